@@ -1,0 +1,41 @@
+/**
+ * @file
+ * Kinematic boundary conditions: fixed or prescribed velocity on the nodes
+ * of named boundary ids or inside a box.
+ */
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  /** One kinematic boundary condition of a scene (seed Eq. (28b)). */
+  class BoundaryCondition
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm,
+                                 const std::string        &name);
+
+    /** Whether a node of body @p body_name at reference position @p X on
+        boundary ids @p ids (empty for interior nodes) is constrained. */
+    bool selects(const std::string                      &body_name,
+                 const dealii::Point<3>                 &X,
+                 const std::vector<unsigned int>        &ids) const;
+
+    std::string            name;
+    std::string            body;
+    std::array<bool, 3>    components = {{true, true, true}};
+    dealii::Tensor<1, 3>   velocity;
+
+  private:
+    bool                      by_box = false;
+    std::vector<unsigned int> boundary_ids;
+    dealii::Point<3>          lower, upper;
+  };
+} // namespace anvil

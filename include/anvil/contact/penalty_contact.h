@@ -1,0 +1,110 @@
+/**
+ * @file
+ * Symmetric node-to-segment penalty contact between two deformable bodies
+ * (seed section 4.3, steps (1)-(5) and (7)).
+ */
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace anvil::Contact
+{
+  /**
+   * A surface of quadrilateral segments (element faces on a body's
+   * boundary) over a list of surface nodes.
+   */
+  struct Surface
+  {
+    /** Nodes (indices into the pair's node list) of each segment, cyclic,
+        ordered so that (x1-x0) x (x3-x0) points out of the body. */
+    std::vector<std::array<unsigned int, 4>> segments;
+    /** K A^2 / V of each segment's element (seed Eq. (59) without f).
+        Units: N/m. */
+    std::vector<double> stiffness;
+    /** Thickness V / A of each segment's element: the deepest penetration
+        accepted as contact. Units: m. */
+    std::vector<double> depth;
+    /** Segments around each node of the pair's node list. */
+    std::vector<std::vector<unsigned int>> node_segments;
+    /** The pair's nodes on this surface. */
+    std::vector<unsigned int> nodes;
+  };
+
+  /** One segment as the simulator hands it over, with global dof indices. */
+  struct SegmentDescription
+  {
+    std::array<unsigned long, 4> x_dof;
+    std::array<double, 12>       reference_position;
+    double                       stiffness;
+    double                       depth;
+  };
+
+  /** What a contact evaluation reports. */
+  struct ContactResult
+  {
+    /** Sum of the contact forces on the first body's nodes. Units: N. */
+    std::array<double, 3> force_on_first = {{0, 0, 0}};
+    /** Deepest penetration found in either pass. Units: m. */
+    double max_penetration = 0;
+    /** Energy stored in the penalty springs, 1/2 k l^2. Units: J. */
+    double energy = 0;
+    /** Number of active slave nodes (both passes). */
+    unsigned int n_active = 0;
+  };
+
+  /**
+   * A contact pair: each body's surface is master for the other's nodes
+   * (the symmetric penalty method). The pair's data are replicated on every
+   * rank: every rank evaluates the whole pair on the same gathered
+   * positions, in an order fixed by the reference coordinates, and keeps
+   * the forces of the nodes it owns. The result therefore does not depend
+   * on the number of processes.
+   */
+  class PenaltyContact
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm,
+                                 const std::string        &name);
+
+    /** Build the replicated surfaces from all ranks' segments. */
+    void setup(const std::vector<SegmentDescription> &first,
+               const std::vector<SegmentDescription> &second);
+
+    /** Global x-dof indices of the pair's nodes, in the pair's order. */
+    const std::vector<unsigned long> &node_dofs() const
+    {
+      return dofs;
+    }
+
+    /**
+     * Evaluate both passes at positions @p x (3 per pair node) and add the
+     * contact forces to @p f (3 per pair node).
+     */
+    ContactResult compute_forces(const std::vector<double> &x,
+                                 std::vector<double>       &f) const;
+
+    std::string  name;
+    std::string  first_body, second_body;
+    double       penalty_factor = 0.1;
+    bool         symmetric      = true;
+
+  private:
+    /** One pass: nodes of @p slave against segments of @p master. */
+    void pass(const Surface             &slave,
+              const Surface             &master,
+              const std::vector<double> &x,
+              std::vector<double>       &f,
+              bool                       slave_is_first,
+              ContactResult             &result) const;
+
+    std::vector<unsigned long> dofs;
+    std::vector<bool>          on_first;
+    Surface                    surface[2];
+  };
+} // namespace anvil::Contact

@@ -1,0 +1,194 @@
+/**
+ * @file
+ * The explicit element loop: 8-node hexahedra with one-point integration and
+ * Flanagan-Belytschko hourglass control, or full 2x2x2 integration, in the
+ * total or updated Lagrangian formulation.
+ *
+ * This is the fast path of the code (../STYLE "hot loops"): state lives in
+ * contiguous arrays in element order, shape-function derivatives are
+ * compile-time tables on the natural element [-1,1]^3, nothing is allocated
+ * or looked up per element per step, and no FEValues is reinitialised.
+ * The reference path is deal.II's FEValues; tests/unit/patch_test checks that
+ * both agree.
+ *
+ * Vertex numbering is deal.II's lexicographic one: vertex I = i + 2j + 4k has
+ * natural coordinates (2i-1, 2j-1, 2k-1). The seed's Figure 2 numbers the
+ * vertices counter-clockwise per face; the base vectors Lambda_1..3 and
+ * Gamma_1..4 of seed Eq. (42) are therefore re-derived here as products of
+ * the natural coordinates: Lambda_a = xi_a, Gamma_1 = xi eta,
+ * Gamma_2 = eta zeta, Gamma_3 = xi zeta, Gamma_4 = xi eta zeta.
+ */
+#pragma once
+
+#include <anvil/material_model/interface.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace anvil::Element
+{
+  /** Element integration rule. */
+  enum class Integration
+  {
+    /** Centroid, seed Eq. (39), with hourglass control. */
+    one_point,
+    /** 2x2x2 Gauss points. */
+    full
+  };
+
+  /** Hourglass control of one-point elements (seed section 3.7). */
+  enum class HourglassType
+  {
+    none,
+    /** Viscous form, seed Eq. (44) with the Flanagan-Belytschko
+        orthogonalised base vectors gamma (FB 1981, Eq. 42). */
+    viscous,
+    /** Stiffness form: the same modes resisted in proportion to the
+        accumulated hourglass displacement. */
+    stiffness
+  };
+
+  std::string to_string(Integration i);
+  std::string to_string(HourglassType h);
+
+  /** What one pass of the element loop reports. */
+  struct LoopResult
+  {
+    /** Smallest L_e / c_e over the elements. Units: s. */
+    double critical_time_step = 1e300;
+    /** Increment of internal (strain) energy this step. Units: J. */
+    double internal_energy_increment = 0;
+    /** Increment of hourglass energy this step. Units: J. */
+    double hourglass_energy_increment = 0;
+    /** Index of the first element whose Jacobian is not positive, or -1. */
+    long int inverted_element = -1;
+  };
+
+  /**
+   * All elements of one body on this MPI rank: they share a material,
+   * formulation, integration rule and hourglass control.
+   */
+  class ElementGroup
+  {
+  public:
+    ElementGroup(const MaterialModel::Interface &material,
+                 Formulation                     formulation,
+                 Integration                     integration,
+                 HourglassType                   hourglass,
+                 double                          hourglass_coefficient);
+
+    /**
+     * Add one element. @p node holds, for each of the 8 vertices in
+     * lexicographic order, the local index of its x component in the nodal
+     * vectors (y and z follow at +1, +2). @p X are the reference vertex
+     * coordinates. @p cell_index is a user tag (deal.II's active cell
+     * index) used by output.
+     */
+    void add_element(const std::array<unsigned int, 8> &node,
+                     const double (&X)[8][3],
+                     unsigned int cell_index);
+
+    /** Allocate stress and history storage once all elements are added. */
+    void finalize();
+
+    /**
+     * The explicit element loop: from current positions @p x and
+     * velocities @p v (the half-step velocity that brought the mesh to x),
+     * update stresses over @p dt (the time since the last call; 0 at the
+     * start) and subtract the internal and hourglass forces from @p force.
+     */
+    LoopResult compute_internal_forces(const double *x,
+                                       const double *v,
+                                       double        dt,
+                                       double       *force);
+
+    unsigned int n_elements() const
+    {
+      return cell_index.size();
+    }
+    unsigned int n_quadrature_points() const
+    {
+      return n_qp;
+    }
+    unsigned int element_cell_index(const unsigned int e) const
+    {
+      return cell_index[e];
+    }
+    const std::array<unsigned int, 8> element_nodes(const unsigned int e) const;
+
+    /** Stress at quadrature point q of element e (Voigt): Cauchy for
+        updated Lagrangian, second Piola-Kirchhoff for total Lagrangian. */
+    const double *stress(const unsigned int e, const unsigned int q) const
+    {
+      return &stresses[6 * (e * n_qp + q)];
+    }
+    double *stress(const unsigned int e, const unsigned int q)
+    {
+      return &stresses[6 * (e * n_qp + q)];
+    }
+    /** Accumulated internal and hourglass energy of element e. Units: J. */
+    double element_internal_energy(const unsigned int e) const
+    {
+      return internal_energy[e];
+    }
+    double element_hourglass_energy(const unsigned int e) const
+    {
+      return hourglass_energy[e];
+    }
+    double element_reference_volume(const unsigned int e) const
+    {
+      return reference_volume[e];
+    }
+
+    Formulation get_formulation() const
+    {
+      return formulation;
+    }
+    const MaterialModel::Interface &get_material() const
+    {
+      return material;
+    }
+
+    /** Bytes of state held per element (solver arrays only). */
+    double memory_per_element() const;
+
+    /**
+     * Cauchy stress (Voigt) averaged over the element from the stored
+     * stresses and current positions @p x.
+     */
+    void cauchy_stress(const unsigned int e,
+                       const double      *x,
+                       double            *sigma) const;
+
+  private:
+    template <Formulation F, Integration I, HourglassType H>
+    LoopResult loop(const double *x, const double *v, double dt, double *force);
+
+    const MaterialModel::Interface &material;
+    const Formulation               formulation;
+    const Integration               integration;
+    const HourglassType             hourglass;
+    const double                    hourglass_coefficient;
+    const unsigned int              n_qp;
+    const unsigned int              n_hist;
+
+    std::vector<unsigned int> nodes;
+    std::vector<unsigned int> cell_index;
+    std::vector<double>       reference_volume;
+    /** Total Lagrangian: inverse reference Jacobian (9) per point. */
+    std::vector<double> jacobian_inverse_ref;
+    /** Weight times reference Jacobian determinant per point. */
+    std::vector<double> jxw_ref;
+    std::vector<double> stresses;
+    std::vector<double> history;
+    /** Stiffness hourglass control: accumulated modes q_aj (12). */
+    std::vector<double> hourglass_modes;
+    /** Hourglass resistance r_aj of the previous step (12), for the
+        trapezoidal hourglass work. */
+    std::vector<double> hourglass_resistance;
+    std::vector<double> internal_energy;
+    std::vector<double> hourglass_energy;
+  };
+} // namespace anvil::Element

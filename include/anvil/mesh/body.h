@@ -1,0 +1,60 @@
+/**
+ * @file
+ * A body of a scene: its mesh source, material, formulation, element
+ * integration and initial velocity.
+ */
+#pragma once
+
+#include <anvil/element/element_group.h>
+#include <anvil/material_model/interface.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/grid/tria.h>
+
+#include <memory>
+#include <string>
+
+namespace anvil
+{
+  /**
+   * One deformable body. Its mesh is built serially (generators may refine
+   * with their curved manifolds), then flattened into the scene's single
+   * distributed triangulation, where the body index is the cell's
+   * material id.
+   */
+  class Body
+  {
+  public:
+    /** Declare the entries of subsection "Body NAME". */
+    static void declare_parameters(dealii::ParameterHandler &prm);
+
+    /** Read subsection "Body NAME" (the handler is inside it).
+        @p scene_directory resolves relative mesh file names. */
+    void parse_parameters(dealii::ParameterHandler &prm,
+                          const std::string        &name,
+                          const std::string        &scene_directory);
+
+    /** Build this body's mesh (reference configuration). */
+    void create_mesh(dealii::Triangulation<3> &tria) const;
+
+    std::string                                name;
+    std::unique_ptr<MaterialModel::Interface> material;
+    Formulation                                formulation;
+    Element::Integration                       integration;
+    Element::HourglassType                     hourglass;
+    double                                     hourglass_coefficient;
+    dealii::Tensor<1, 3>                       initial_velocity;
+
+  private:
+    std::string          mesh_source;
+    dealii::Point<3>     lower, upper;
+    std::vector<unsigned int> subdivisions;
+    double               radius = 0, length = 0;
+    unsigned int         axial_subdivisions = 1;
+    std::string          file_name;
+    dealii::Tensor<1, 3> offset;
+    double               scale = 1;
+    unsigned int         refinements = 0;
+  };
+} // namespace anvil

@@ -1,0 +1,178 @@
+/**
+ * @file
+ * The one Simulator class: reads a scene, builds the distributed mesh of
+ * all bodies, and runs the explicit central-difference loop.
+ */
+#pragma once
+
+#include <anvil/boundary_conditions/boundary_condition.h>
+#include <anvil/contact/penalty_contact.h>
+#include <anvil/element/element_group.h>
+#include <anvil/mesh/body.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
+
+  /** Energies of the whole scene (seed Eq. (21)). Units: J. */
+  struct Energies
+  {
+    double kinetic       = 0;
+    double internal      = 0;
+    double hourglass     = 0;
+    double contact       = 0;
+    double friction      = 0;
+    double external_work = 0;
+    double total() const
+    {
+      return kinetic + internal + hourglass + contact + friction;
+    }
+  };
+
+  /** A named output point: the node of a body nearest to a given point. */
+  struct Probe
+  {
+    std::string      name;
+    std::string      body;
+    dealii::Point<3> point;
+    /** Global x-dof index of the chosen node, and its owner. */
+    unsigned long x_dof = 0;
+    int           owner = 0;
+  };
+
+  class Simulator
+  {
+  public:
+    /**
+     * Read the scene @p parameter_file. Throws InputError with a one-line
+     * message on bad input.
+     */
+    Simulator(const std::string &parameter_file, MPI_Comm comm);
+
+    /** Print the whole parameter tree with documentation (.prm syntax). */
+    static void print_parameters(std::ostream &out);
+
+    /** Run the scene to its end time. */
+    void run();
+
+    /** Build everything a run needs (mesh, DoFs, boundary conditions,
+        contact surfaces) without running or writing: a scene check. */
+    void check();
+
+    /** Largest relative difference of two energies tables (testing aid). */
+    const Energies &get_energies() const
+    {
+      return energies;
+    }
+
+  private:
+    // Parameters (source/simulator/parameters.cc)
+    static void declare_parameters(dealii::ParameterHandler         &prm,
+                                   const std::vector<std::string>   &bodies,
+                                   const std::vector<std::string>   &bcs,
+                                   const std::vector<std::string>   &pairs,
+                                   const std::vector<std::string>   &probes);
+    void        parse_parameters(const std::string &parameter_file);
+
+    // Setup (source/simulator/setup.cc)
+    void make_grid();
+    void setup_system();
+    void setup_element_groups();
+    void assemble_lumped_mass();
+    void setup_boundary_conditions();
+    void setup_contact();
+    void setup_probes();
+    void prepare_output_directory();
+
+    // The explicit step (source/simulator/time_integration.cc)
+    double compute_internal_forces(double dt_previous);
+    void   apply_contact();
+    void   update_kinematics(double dt_previous, double dt);
+    void   check_health(double time, unsigned int step);
+
+    // Output (source/simulator/output.cc)
+    void write_history(double time);
+    void output_results(double time, const std::string &basename);
+    void write_pvd();
+
+    MPI_Comm                   mpi_communicator;
+    dealii::ConditionalOStream pcout;
+    std::unique_ptr<dealii::TimerOutput> timer;
+
+    // Scene parameters
+    std::string scene_file;
+    std::string scene_name;
+    std::string output_directory;
+    double      end_time;
+    double      time_step_factor;
+    double      output_interval;
+    double      history_interval;
+    double      energy_tolerance;
+    bool        overwrite_output;
+    bool        print_wall_times;
+    unsigned int max_steps;
+
+    std::vector<Body>                     bodies;
+    std::vector<BoundaryCondition>        boundary_conditions;
+    std::vector<Contact::PenaltyContact>  contact_pairs;
+    std::vector<Probe>                    probes;
+
+    // Discretisation
+    dealii::parallel::distributed::Triangulation<3> triangulation;
+    dealii::FESystem<3>                             fe;
+    dealii::DoFHandler<3>                           dof_handler;
+    std::vector<Element::ElementGroup>              element_groups;
+
+    // Nodal state: reference and current positions, half-step velocity,
+    // force and lumped mass, all with ghost entries.
+    VectorType reference_position;
+    VectorType position;
+    VectorType velocity;
+    VectorType force;
+    VectorType mass;
+    /** Body index of each locally owned dof, for momentum output. */
+    std::vector<unsigned char> dof_body, dof_component;
+    /** Last state that passed the health checks. */
+    VectorType good_position, good_velocity;
+    double     good_time = 0;
+
+    /** Constrained dofs (local indices) and their prescribed velocities. */
+    std::vector<unsigned int> constrained_dofs;
+    std::vector<double>       constrained_velocity;
+
+    /** Per contact pair: local index of each pair node's x dof on this rank
+        if owned, else -1; and the gather/scatter buffers. */
+    std::vector<std::vector<long>>   contact_local_index;
+    std::vector<std::vector<double>> contact_positions, contact_forces;
+    std::vector<Contact::ContactResult> contact_results;
+
+    // Energy bookkeeping
+    Energies     energies;
+    double       initial_energy = 0;
+    double       balance_error  = 0;
+    double       critical_dt    = 0;
+    double       current_dt     = 0;
+    unsigned int step_number    = 0;
+    double       time           = 0;
+    long int     inverted_cell  = -1;
+
+    // Files (rank 0)
+    std::ofstream                energy_file, momentum_file;
+    std::vector<std::ofstream>   probe_files, contact_files;
+    std::vector<std::pair<double, std::string>> pvd_records;
+    unsigned int                 output_count = 0;
+  };
+} // namespace anvil

@@ -1,0 +1,380 @@
+/**
+ * @file
+ * Symmetric node-to-segment penalty contact, seed section 4.3.
+ */
+#include <anvil/contact/penalty_contact.h>
+#include <anvil/utilities/input_error.h>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace anvil::Contact
+{
+  namespace bg  = boost::geometry;
+  namespace bgi = boost::geometry::index;
+
+  namespace
+  {
+    using BPoint = bg::model::point<double, 3, bg::cs::cartesian>;
+    using Value  = std::pair<BPoint, unsigned int>;
+
+    struct Vec
+    {
+      double x, y, z;
+    };
+    inline Vec operator-(const Vec &a, const Vec &b)
+    {
+      return {a.x - b.x, a.y - b.y, a.z - b.z};
+    }
+    inline Vec operator+(const Vec &a, const Vec &b)
+    {
+      return {a.x + b.x, a.y + b.y, a.z + b.z};
+    }
+    inline Vec operator*(const double s, const Vec &a)
+    {
+      return {s * a.x, s * a.y, s * a.z};
+    }
+    inline double dot(const Vec &a, const Vec &b)
+    {
+      return a.x * b.x + a.y * b.y + a.z * b.z;
+    }
+    inline Vec cross(const Vec &a, const Vec &b)
+    {
+      return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    }
+    inline double norm(const Vec &a)
+    {
+      return std::sqrt(dot(a, a));
+    }
+
+    // How far (in natural coordinates) a segment is extended beyond its
+    // edges when no segment contains the projection of a slave node.
+    constexpr double edge_tolerance = 0.1;
+
+    // Natural coordinates of the cyclic segment nodes (seed Eq. (54)).
+    constexpr double xi_n[4]  = {-1, 1, 1, -1};
+    constexpr double eta_n[4] = {-1, -1, 1, 1};
+  } // namespace
+
+
+  void PenaltyContact::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using namespace dealii;
+    prm.declare_entry("First body", "", Patterns::Anything(),
+                      "Name of the first body of the pair.");
+    prm.declare_entry("Second body", "", Patterns::Anything(),
+                      "Name of the second body of the pair.");
+    prm.declare_entry("Penalty scale factor",
+                      "0.1",
+                      Patterns::Double(0.),
+                      "f in the penalty stiffness k = f K A^2 / V (seed "
+                      "Eq. (59)); values above 0.4 may need a smaller time "
+                      "step. Units: none.");
+    prm.declare_entry("Symmetric",
+                      "true",
+                      Patterns::Bool(),
+                      "Apply the node-to-segment pass in both directions "
+                      "(the symmetric penalty method). If false, the second "
+                      "body's nodes are the only slaves.");
+  }
+
+
+  void PenaltyContact::parse_parameters(dealii::ParameterHandler &prm,
+                                        const std::string        &pair_name)
+  {
+    name           = pair_name;
+    first_body     = prm.get("First body");
+    second_body    = prm.get("Second body");
+    penalty_factor = prm.get_double("Penalty scale factor");
+    symmetric      = prm.get_bool("Symmetric");
+    if (first_body.empty() || second_body.empty())
+      throw InputError("subsection 'Contact pair " + name +
+                       "': 'First body' and 'Second body' are required");
+    if (first_body == second_body)
+      throw InputError("subsection 'Contact pair " + name +
+                       "': self-contact is not supported; name two bodies");
+  }
+
+
+  void PenaltyContact::setup(const std::vector<SegmentDescription> &first,
+                             const std::vector<SegmentDescription> &second)
+  {
+    // Order nodes by reference coordinates so that the evaluation order
+    // does not depend on the dof numbering (and so on the partitioning).
+    // The body index is part of the key: nodes of the two bodies may
+    // coincide in the reference configuration.
+    std::map<std::array<double, 4>, unsigned long> by_position;
+    std::map<unsigned long, bool>                  dof_on_first;
+    for (unsigned int s = 0; s < 2; ++s)
+      for (const auto &seg : (s == 0 ? first : second))
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            by_position[{{double(s),
+                          seg.reference_position[3 * v],
+                          seg.reference_position[3 * v + 1],
+                          seg.reference_position[3 * v + 2]}}] = seg.x_dof[v];
+            dof_on_first[seg.x_dof[v]] = (s == 0);
+          }
+    dofs.clear();
+    for (const auto &[p, d] : by_position)
+      dofs.push_back(d);
+    std::map<unsigned long, unsigned int> index;
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      index[dofs[i]] = i;
+    on_first.resize(dofs.size());
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      on_first[i] = dof_on_first[dofs[i]];
+
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        auto segs = (s == 0 ? first : second);
+        // Deterministic segment order: by the pair-node indices.
+        std::vector<std::pair<std::array<unsigned int, 4>, unsigned int>> order;
+        for (unsigned int k = 0; k < segs.size(); ++k)
+          {
+            std::array<unsigned int, 4> n;
+            for (unsigned int v = 0; v < 4; ++v)
+              n[v] = index[segs[k].x_dof[v]];
+            order.emplace_back(n, k);
+          }
+        std::sort(order.begin(), order.end());
+        Surface &surf = surface[s];
+        surf.segments.clear();
+        surf.stiffness.clear();
+        surf.depth.clear();
+        surf.node_segments.assign(dofs.size(), {});
+        for (const auto &[n, k] : order)
+          {
+            surf.node_segments[n[0]].push_back(surf.segments.size());
+            surf.node_segments[n[1]].push_back(surf.segments.size());
+            surf.node_segments[n[2]].push_back(surf.segments.size());
+            surf.node_segments[n[3]].push_back(surf.segments.size());
+            surf.segments.push_back(n);
+            surf.stiffness.push_back(segs[k].stiffness);
+            surf.depth.push_back(segs[k].depth);
+          }
+        surf.nodes.clear();
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          if (!surf.node_segments[i].empty())
+            surf.nodes.push_back(i);
+      }
+  }
+
+
+  ContactResult PenaltyContact::compute_forces(const std::vector<double> &x,
+                                               std::vector<double> &f) const
+  {
+    ContactResult result;
+    // Pass 1: the second body's nodes against the first body's segments.
+    pass(surface[1], surface[0], x, f, false, result);
+    // Pass 2 (symmetric): the first body's nodes against the second's.
+    if (symmetric)
+      pass(surface[0], surface[1], x, f, true, result);
+    return result;
+  }
+
+
+  void PenaltyContact::pass(const Surface             &slave,
+                            const Surface             &master,
+                            const std::vector<double> &x,
+                            std::vector<double>       &f,
+                            const bool                 slave_is_first,
+                            ContactResult             &result) const
+  {
+    auto pos = [&](const unsigned int i) -> Vec {
+      return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+    };
+
+    // @sect4{Step (1): nearest master node}
+    // An R-tree of the master nodes at their current positions, packed
+    // in one go (O(n log n)); queried for the nearest neighbour.
+    std::vector<Value> values;
+    values.reserve(master.nodes.size());
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    double max_depth = 0;
+    for (const unsigned int i : master.nodes)
+      {
+        values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            lo[d] = std::min(lo[d], x[3 * i + d]);
+            hi[d] = std::max(hi[d], x[3 * i + d]);
+          }
+      }
+    for (const double d : master.depth)
+      max_depth = std::max(max_depth, d);
+    if (values.empty())
+      return;
+    const bgi::rtree<Value, bgi::rstar<16>> tree(values.begin(), values.end());
+
+    // Slave node normals: area-weighted average of the normals of the
+    // slave segments around each node, in the current configuration.
+    std::vector<Vec> slave_normal(x.size() / 3, Vec{0, 0, 0});
+    for (const auto &n : slave.segments)
+      {
+        const Vec a = cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
+        for (unsigned int j = 0; j < 4; ++j)
+          slave_normal[n[j]] = slave_normal[n[j]] + a;
+      }
+
+    // Step (3), seed Eqs. (54)-(55): Newton iterations for the closest
+    // point r(xi, eta) of the bilinear segment to t:
+    // r_xi . (t - r) = 0, r_eta . (t - r) = 0.
+    auto project = [&](const Surface &surf, const unsigned int seg, const Vec &t,
+                       double &xi, double &eta) {
+      const auto &n    = surf.segments[seg];
+      const Vec   X[4] = {pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3])};
+      Vec         r_xe = {0, 0, 0};
+      for (unsigned int j = 0; j < 4; ++j)
+        r_xe = r_xe + (0.25 * xi_n[j] * eta_n[j]) * X[j];
+      xi = eta = 0;
+      for (unsigned int it = 0; it < 10; ++it)
+        {
+          Vec r = {0, 0, 0}, r_xi = {0, 0, 0}, r_eta = {0, 0, 0};
+          for (unsigned int j = 0; j < 4; ++j)
+            {
+              r     = r + (0.25 * (1 + xi_n[j] * xi) * (1 + eta_n[j] * eta)) * X[j];
+              r_xi  = r_xi + (0.25 * xi_n[j] * (1 + eta_n[j] * eta)) * X[j];
+              r_eta = r_eta + (0.25 * eta_n[j] * (1 + xi_n[j] * xi)) * X[j];
+            }
+          const Vec    d   = t - r;
+          const double g1  = dot(r_xi, d);
+          const double g2  = dot(r_eta, d);
+          const double a11 = dot(r_xi, r_xi);
+          const double a22 = dot(r_eta, r_eta);
+          const double a12 = dot(r_xi, r_eta) - dot(r_xe, d);
+          const double det = a11 * a22 - a12 * a12;
+          if (!(det > 0))
+            break;
+          const double dxi  = (a22 * g1 - a12 * g2) / det;
+          const double deta = (a11 * g2 - a12 * g1) / det;
+          xi  = std::clamp(xi + dxi, -2., 2.);
+          eta = std::clamp(eta + deta, -2., 2.);
+          if (std::abs(dxi) + std::abs(deta) < 1e-13)
+            break;
+        }
+    };
+
+    std::vector<Value> nearest;
+    for (const unsigned int s : slave.nodes)
+      {
+        const Vec t = pos(s);
+        // Cheap rejection: outside the master surface's box by more than
+        // the deepest admissible penetration.
+        if (t.x < lo[0] - max_depth || t.x > hi[0] + max_depth ||
+            t.y < lo[1] - max_depth || t.y > hi[1] + max_depth ||
+            t.z < lo[2] - max_depth || t.z > hi[2] + max_depth)
+          continue;
+        nearest.clear();
+        tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1),
+                   std::back_inserter(nearest));
+        const unsigned int m  = nearest[0].second;
+        const Vec          xm = pos(m);
+        const Vec          g  = t - xm;
+
+        // @sect4{Step (2): candidate segments, seed Eqs. (50)-(53)}
+        // For each segment S_i around m, C_i and C_{i+1} are its two edges
+        // leaving m; S is g projected on the segment's plane. The slave
+        // node may touch S_i when S lies between C_i and C_{i+1}.
+        //
+        // Where the test is undecided (S vanishes or lies along an edge:
+        // the slave node sits over m or over an edge), the seed's Eq. (53)
+        // picks the segment best aligned with g. At a convex edge that is
+        // the wrong face (a node pressed into the end face of a rod would be
+        // tested against the rod's side). We decide such cases instead by
+        // the segment that faces the slave surface most directly, i.e. the
+        // most negative n_master . n_slave; and no segment facing the same
+        // way as the slave surface is ever a contact partner.
+        const Vec    ns    = slave_normal[s];
+        const double ns_n  = norm(ns);
+        int          chosen = -1;
+        double       best   = 1e300;
+        double       xi_c = 0, eta_c = 0;
+        for (const unsigned int seg : master.node_segments[m])
+          {
+            const auto  &n = master.segments[seg];
+            unsigned int k = 0;
+            while (n[k] != m)
+              ++k;
+            const Vec    Ci  = pos(n[(k + 1) % 4]) - xm;
+            const Vec    Ci1 = pos(n[(k + 3) % 4]) - xm;
+            const Vec    cc  = cross(Ci, Ci1);
+            const double cn  = norm(cc);
+            if (cn == 0)
+              continue;
+            const Vec    mn     = (1. / cn) * cc; // Eq. (52)
+            const Vec    S      = g - dot(g, mn) * mn; // Eq. (51)
+            const double facing = ns_n > 0 ? dot(mn, ns) / ns_n : -1.;
+            if (facing >= 0)
+              continue;
+            const bool decided = norm(S) > 1e-6 * norm(g) &&
+                                 dot(cross(Ci, S), cc) > 0 &&
+                                 dot(cross(Ci, S), cross(S, Ci1)) > 0;
+            double xi, eta;
+            project(master, seg, t, xi, eta);
+            // Inside the segment first; then inside its extension by
+            // 'edge_tolerance' (a node pressed against the rim of the master
+            // surface stays in contact instead of flickering in and out).
+            const double out    = std::max(std::abs(xi), std::abs(eta)) - 1.;
+            const double score  = (out <= 1e-9 ? 0. : out <= edge_tolerance ? 5. : 100.) +
+                                 (decided ? -2. : 0.) + facing;
+            if (score < best)
+              {
+                best   = score;
+                chosen = seg;
+                xi_c   = xi;
+                eta_c  = eta;
+              }
+          }
+        if (chosen < 0 || best >= 50.)
+          continue;
+
+        // @sect4{Step (3): contact point, seed Eqs. (54)-(55)}
+        // (solved in project() for each candidate above)
+        const auto  &n   = master.segments[chosen];
+        const Vec    X[4] = {pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3])};
+        const double xi  = xi_c;
+        const double eta = eta_c;
+        double       phi[4];
+        Vec          r = {0, 0, 0}, r_xi = {0, 0, 0}, r_eta = {0, 0, 0};
+        for (unsigned int j = 0; j < 4; ++j)
+          {
+            phi[j] = 0.25 * (1 + xi_n[j] * xi) * (1 + eta_n[j] * eta);
+            r      = r + phi[j] * X[j];
+            r_xi   = r_xi + (0.25 * xi_n[j] * (1 + eta_n[j] * eta)) * X[j];
+            r_eta  = r_eta + (0.25 * eta_n[j] * (1 + xi_n[j] * xi)) * X[j];
+          }
+
+        // @sect4{Step (4): penetration, seed Eqs. (56)-(57)}
+        const Vec    nc = cross(r_xi, r_eta);
+        const Vec    nn = (1. / norm(nc)) * nc;
+        const double l  = dot(nn, t - r);
+        if (!(l < 0) || -l > master.depth[chosen])
+          continue;
+
+        // @sect4{Step (5): normal force, seed Eqs. (58)-(60)}
+        const double k  = penalty_factor * master.stiffness[chosen];
+        const Vec    fs = (-l * k) * nn;
+        f[3 * s] += fs.x;
+        f[3 * s + 1] += fs.y;
+        f[3 * s + 2] += fs.z;
+        for (unsigned int j = 0; j < 4; ++j)
+          {
+            f[3 * n[j]] -= phi[j] * fs.x;
+            f[3 * n[j] + 1] -= phi[j] * fs.y;
+            f[3 * n[j] + 2] -= phi[j] * fs.z;
+          }
+        const double sign = slave_is_first ? 1. : -1.;
+        result.force_on_first[0] += sign * fs.x;
+        result.force_on_first[1] += sign * fs.y;
+        result.force_on_first[2] += sign * fs.z;
+        result.max_penetration = std::max(result.max_penetration, -l);
+        result.energy += 0.5 * k * l * l;
+        ++result.n_active;
+      }
+  }
+} // namespace anvil::Contact

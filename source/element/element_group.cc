@@ -1,0 +1,630 @@
+/**
+ * @file
+ * The explicit element loop. See element_group.h for conventions.
+ */
+#include <anvil/element/element_group.h>
+#include <anvil/utilities/input_error.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace anvil::Element
+{
+  std::string to_string(const Integration i)
+  {
+    return i == Integration::one_point ? "one point" : "full";
+  }
+
+  std::string to_string(const HourglassType h)
+  {
+    switch (h)
+      {
+        case HourglassType::viscous:
+          return "viscous";
+        case HourglassType::stiffness:
+          return "stiffness";
+        default:
+          return "none";
+      }
+  }
+
+  namespace
+  {
+    // @sect3{Shape-function tables}
+    //
+    // Natural coordinates of the lexicographic vertices, and the
+    // derivatives dN_I/dxi_a of the trilinear shape functions (seed
+    // Eq. (40)) at the 8 Gauss points (index 0..7) and at the centroid
+    // (index 8), where they reduce to Lambda_a / 8 (seed Eq. (43)).
+    constexpr double sgn[8][3] = {{-1, -1, -1},
+                                  {1, -1, -1},
+                                  {-1, 1, -1},
+                                  {1, 1, -1},
+                                  {-1, -1, 1},
+                                  {1, -1, 1},
+                                  {-1, 1, 1},
+                                  {1, 1, 1}};
+
+    struct Tables
+    {
+      double dN[9][8][3];
+      double weight[9];
+      /** Hourglass base vectors Gamma_j (seed Eq. (42)), lexicographic. */
+      double Gamma[4][8];
+
+      Tables()
+      {
+        const double g = 1. / std::sqrt(3.);
+        for (unsigned int q = 0; q < 9; ++q)
+          {
+            double p[3];
+            for (unsigned int a = 0; a < 3; ++a)
+              p[a] = (q < 8 ? g * sgn[q][a] : 0.);
+            weight[q] = (q < 8 ? 1. : 8.);
+            for (unsigned int I = 0; I < 8; ++I)
+              for (unsigned int a = 0; a < 3; ++a)
+                {
+                  double d = 0.125 * sgn[I][a];
+                  for (unsigned int b = 0; b < 3; ++b)
+                    if (b != a)
+                      d *= 1. + sgn[I][b] * p[b];
+                  dN[q][I][a] = d;
+                }
+          }
+        for (unsigned int I = 0; I < 8; ++I)
+          {
+            Gamma[0][I] = sgn[I][0] * sgn[I][1];
+            Gamma[1][I] = sgn[I][1] * sgn[I][2];
+            Gamma[2][I] = sgn[I][0] * sgn[I][2];
+            Gamma[3][I] = sgn[I][0] * sgn[I][1] * sgn[I][2];
+          }
+      }
+    };
+
+    const Tables tables;
+
+    // @sect3{Small 3x3 helpers}
+    inline double det3(const double (&A)[3][3])
+    {
+      return A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+             A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+             A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    }
+
+    inline void inv3(const double (&A)[3][3], const double det, double (&B)[3][3])
+    {
+      const double r = 1. / det;
+      B[0][0]        = r * (A[1][1] * A[2][2] - A[1][2] * A[2][1]);
+      B[0][1]        = r * (A[0][2] * A[2][1] - A[0][1] * A[2][2]);
+      B[0][2]        = r * (A[0][1] * A[1][2] - A[0][2] * A[1][1]);
+      B[1][0]        = r * (A[1][2] * A[2][0] - A[1][0] * A[2][2]);
+      B[1][1]        = r * (A[0][0] * A[2][2] - A[0][2] * A[2][0]);
+      B[1][2]        = r * (A[0][2] * A[1][0] - A[0][0] * A[1][2]);
+      B[2][0]        = r * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+      B[2][1]        = r * (A[0][1] * A[2][0] - A[0][0] * A[2][1]);
+      B[2][2]        = r * (A[0][0] * A[1][1] - A[0][1] * A[1][0]);
+    }
+
+    /** Voigt [xx,yy,zz,xy,yz,xz] to full symmetric matrix. */
+    inline void voigt_to_matrix(const double *s, double (&A)[3][3])
+    {
+      A[0][0] = s[0];
+      A[1][1] = s[1];
+      A[2][2] = s[2];
+      A[0][1] = A[1][0] = s[3];
+      A[1][2] = A[2][1] = s[4];
+      A[0][2] = A[2][0] = s[5];
+    }
+
+    /** Double contraction of two symmetric tensors in Voigt storage. */
+    inline double contract(const double *a, const double *b)
+    {
+      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] +
+             2. * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
+    }
+
+    /**
+     * Objective rotation of the stress by the spin W over dt with the
+     * Hughes-Winget midpoint rule, Q = (I - dt W/2)^-1 (I + dt W/2),
+     * sigma <- Q sigma Q^T: the integrated form of the Jaumann rate of seed
+     * Eq. (15) that stays exactly orthogonal (Hughes & Winget 1980).
+     */
+    inline void rotate_stress(const double w01,
+                              const double w12,
+                              const double w02,
+                              const double dt,
+                              double      *s)
+    {
+      const double h    = 0.5 * dt;
+      double       A[3][3] = {{1., h * w01, h * w02},
+                              {-h * w01, 1., h * w12},
+                              {-h * w02, -h * w12, 1.}};
+      double       Ai[3][3];
+      inv3(A, det3(A), Ai);
+      const double Bm[3][3] = {{1., -h * w01, -h * w02},
+                               {h * w01, 1., -h * w12},
+                               {h * w02, h * w12, 1.}};
+      double       Q[3][3];
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          Q[i][j] = Ai[i][0] * Bm[0][j] + Ai[i][1] * Bm[1][j] +
+                    Ai[i][2] * Bm[2][j];
+      double S[3][3], T[3][3];
+      voigt_to_matrix(s, S);
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          T[i][j] = Q[i][0] * S[0][j] + Q[i][1] * S[1][j] + Q[i][2] * S[2][j];
+      // R = T Q^T, only the symmetric part is stored.
+      auto r = [&](unsigned int i, unsigned int j) {
+        return T[i][0] * Q[j][0] + T[i][1] * Q[j][1] + T[i][2] * Q[j][2];
+      };
+      s[0] = r(0, 0);
+      s[1] = r(1, 1);
+      s[2] = r(2, 2);
+      s[3] = r(0, 1);
+      s[4] = r(1, 2);
+      s[5] = r(0, 2);
+    }
+  } // namespace
+
+
+  ElementGroup::ElementGroup(const MaterialModel::Interface &material,
+                             const Formulation               formulation,
+                             const Integration               integration,
+                             const HourglassType             hourglass,
+                             const double hourglass_coefficient)
+    : material(material)
+    , formulation(formulation)
+    , integration(integration)
+    , hourglass(integration == Integration::one_point ? hourglass :
+                                                        HourglassType::none)
+    , hourglass_coefficient(hourglass_coefficient)
+    , n_qp(integration == Integration::one_point ? 1 : 8)
+    , n_hist(material.n_history())
+  {}
+
+
+  void ElementGroup::add_element(const std::array<unsigned int, 8> &node,
+                                 const double (&X)[8][3],
+                                 const unsigned int cell)
+  {
+    nodes.insert(nodes.end(), node.begin(), node.end());
+    cell_index.push_back(cell);
+
+    // Reference Jacobians at the element's points; the volume by full
+    // Gauss quadrature (exact for the trilinear map).
+    double volume = 0;
+    for (unsigned int q = 0; q < 8; ++q)
+      {
+        double J[3][3] = {};
+        for (unsigned int I = 0; I < 8; ++I)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              J[a][c] += X[I][a] * tables.dN[q][I][c];
+        volume += det3(J);
+      }
+    reference_volume.push_back(volume);
+
+    if (formulation == Formulation::total_lagrangian)
+      for (unsigned int qq = 0; qq < n_qp; ++qq)
+        {
+          const unsigned int q       = (n_qp == 1 ? 8 : qq);
+          double             J[3][3] = {};
+          for (unsigned int I = 0; I < 8; ++I)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                J[a][c] += X[I][a] * tables.dN[q][I][c];
+          const double d = det3(J);
+          double       Ji[3][3];
+          inv3(J, d, Ji);
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              jacobian_inverse_ref.push_back(Ji[a][c]);
+          jxw_ref.push_back(d * tables.weight[q]);
+        }
+  }
+
+
+  void ElementGroup::finalize()
+  {
+    const std::size_t n = cell_index.size();
+    stresses.assign(6 * n * n_qp, 0.);
+    history.assign(n_hist * n * n_qp, 0.);
+    if (hourglass == HourglassType::stiffness)
+      hourglass_modes.assign(12 * n, 0.);
+    if (hourglass != HourglassType::none)
+      hourglass_resistance.assign(12 * n, 0.);
+    internal_energy.assign(n, 0.);
+    hourglass_energy.assign(n, 0.);
+  }
+
+
+  const std::array<unsigned int, 8>
+  ElementGroup::element_nodes(const unsigned int e) const
+  {
+    std::array<unsigned int, 8> n;
+    std::copy(&nodes[8 * e], &nodes[8 * e] + 8, n.begin());
+    return n;
+  }
+
+
+  double ElementGroup::memory_per_element() const
+  {
+    const double n = std::max<std::size_t>(1, cell_index.size());
+    return (nodes.capacity() * sizeof(unsigned int) +
+            cell_index.capacity() * sizeof(unsigned int) +
+            sizeof(double) *
+              (reference_volume.capacity() + jacobian_inverse_ref.capacity() +
+               jxw_ref.capacity() + stresses.capacity() + history.capacity() +
+               hourglass_modes.capacity() + hourglass_resistance.capacity() +
+               internal_energy.capacity() +
+               hourglass_energy.capacity())) /
+           n;
+  }
+
+
+  LoopResult ElementGroup::compute_internal_forces(const double *x,
+                                                   const double *v,
+                                                   const double  dt,
+                                                   double       *force)
+  {
+    // Dispatch once per group to a loop specialised at compile time.
+    const bool ul = (formulation == Formulation::updated_lagrangian);
+    if (integration == Integration::full)
+      return ul ? loop<Formulation::updated_lagrangian,
+                       Integration::full,
+                       HourglassType::none>(x, v, dt, force) :
+                  loop<Formulation::total_lagrangian,
+                       Integration::full,
+                       HourglassType::none>(x, v, dt, force);
+    switch (hourglass)
+      {
+        case HourglassType::viscous:
+          return ul ? loop<Formulation::updated_lagrangian,
+                           Integration::one_point,
+                           HourglassType::viscous>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian,
+                           Integration::one_point,
+                           HourglassType::viscous>(x, v, dt, force);
+        case HourglassType::stiffness:
+          return ul ? loop<Formulation::updated_lagrangian,
+                           Integration::one_point,
+                           HourglassType::stiffness>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian,
+                           Integration::one_point,
+                           HourglassType::stiffness>(x, v, dt, force);
+        default:
+          return ul ? loop<Formulation::updated_lagrangian,
+                           Integration::one_point,
+                           HourglassType::none>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian,
+                           Integration::one_point,
+                           HourglassType::none>(x, v, dt, force);
+      }
+  }
+
+
+  // @sect3{The element loop}
+  //
+  // For every element: gather positions and velocities, and at each
+  // integration point form the Jacobian J = dx/dxi of the current
+  // configuration and its rate. In the updated Lagrangian formulation the
+  // velocity gradient L = dv/dx (seed Eq. (4)) is evaluated on the
+  // mid-step configuration x - dt v / 2, which makes the Hughes-Winget
+  // rotation exact for rigid rotations; D and W follow from seed Eq. (5)
+  // and the internal force is f = int B^T sigma dV (seed Eqs. (35), (38),
+  // (39)). In the total Lagrangian formulation F = J J_0^{-1}, E from seed
+  // Eq. (7), S from the material, and f = int B_0^T (F S) dV_0 (seed
+  // Eq. (37)).
+  template <Formulation F, Integration I, HourglassType H>
+  LoopResult ElementGroup::loop(const double *x,
+                                const double *v,
+                                const double  dt,
+                                double       *force)
+  {
+    constexpr unsigned int nq  = (I == Integration::one_point ? 1 : 8);
+    constexpr unsigned int q0  = (I == Integration::one_point ? 8 : 0);
+    const double           rho0 = material.density();
+    const double           M    = material.wave_modulus();
+    LoopResult             result;
+    double                 min_dt2 = 1e300;
+
+    const unsigned int n_el = n_elements();
+    for (unsigned int e = 0; e < n_el; ++e)
+      {
+        const unsigned int *en = &nodes[8 * e];
+        double              xe[8][3], ve[8][3], fe[8][3] = {};
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              xe[n][a] = x[en[n] + a];
+              ve[n][a] = v[en[n] + a];
+            }
+
+        double e_int    = 0;
+        double volume   = 0;
+        double Jinv_c[3][3]; // inverse Jacobian used by hourglass control
+        double max_grad2 = 0;
+
+        for (unsigned int qq = 0; qq < nq; ++qq)
+          {
+            const unsigned int q = q0 + qq;
+            const auto        &dN = tables.dN[q];
+            double             Jn[3][3] = {}, Jd[3][3] = {};
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    Jn[a][c] += xe[n][a] * dN[n][c];
+                    Jd[a][c] += ve[n][a] * dN[n][c];
+                  }
+            const double detn = det3(Jn);
+            if (!(detn > 0))
+              {
+                if (result.inverted_element < 0)
+                  result.inverted_element = e;
+                continue;
+              }
+            double Ji[3][3];
+            inv3(Jn, detn, Ji);
+            // Characteristic length L_e = 2 / max_c |grad xi_c|: the
+            // element's smallest height, V/A_max for a parallelepiped.
+            for (unsigned int c = 0; c < 3; ++c)
+              max_grad2 = std::max(max_grad2,
+                                   Ji[c][0] * Ji[c][0] + Ji[c][1] * Ji[c][1] +
+                                     Ji[c][2] * Ji[c][2]);
+            volume += detn * tables.weight[q];
+
+            double *sig = &stresses[6 * (e * nq + qq)];
+            double *hst = n_hist ? &history[n_hist * (e * nq + qq)] : nullptr;
+            double  G[3][3]; // stress times inverse Jacobian transposed
+            double  jxw;
+
+            if constexpr (F == Formulation::updated_lagrangian)
+              {
+                jxw = detn * tables.weight[q];
+                if (dt > 0)
+                  {
+                    double Jm[3][3];
+                    for (unsigned int a = 0; a < 3; ++a)
+                      for (unsigned int c = 0; c < 3; ++c)
+                        Jm[a][c] = Jn[a][c] - 0.5 * dt * Jd[a][c];
+                    double Jmi[3][3];
+                    inv3(Jm, det3(Jm), Jmi);
+                    double L[3][3];
+                    for (unsigned int a = 0; a < 3; ++a)
+                      for (unsigned int b = 0; b < 3; ++b)
+                        L[a][b] = Jd[a][0] * Jmi[0][b] + Jd[a][1] * Jmi[1][b] +
+                                  Jd[a][2] * Jmi[2][b];
+                    const double D[6] = {L[0][0],
+                                         L[1][1],
+                                         L[2][2],
+                                         0.5 * (L[0][1] + L[1][0]),
+                                         0.5 * (L[1][2] + L[2][1]),
+                                         0.5 * (L[0][2] + L[2][0])};
+                    double       old[6];
+                    std::copy(sig, sig + 6, old);
+                    rotate_stress(0.5 * (L[0][1] - L[1][0]),
+                                  0.5 * (L[1][2] - L[2][1]),
+                                  0.5 * (L[0][2] - L[2][0]),
+                                  dt,
+                                  sig);
+                    material.update_cauchy_stress(D, dt, sig, hst);
+                    // Seed Eq. (25): rho dw/dt = sigma : D, mid-step stress.
+                    double mid[6];
+                    for (unsigned int k = 0; k < 6; ++k)
+                      mid[k] = 0.5 * (old[k] + sig[k]);
+                    e_int += contract(mid, D) * dt * jxw;
+                  }
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    G[a][c] = sig[a == 0 ? 0 : (a == 1 ? 3 : 5)] * Ji[c][0] +
+                              sig[a == 0 ? 3 : (a == 1 ? 1 : 4)] * Ji[c][1] +
+                              sig[a == 0 ? 5 : (a == 1 ? 4 : 2)] * Ji[c][2];
+              }
+            else
+              {
+                const double *Jr = &jacobian_inverse_ref[9 * (e * nq + qq)];
+                jxw              = jxw_ref[e * nq + qq];
+                double Fm[9], Fd[9];
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int b = 0; b < 3; ++b)
+                    {
+                      Fm[3 * a + b] = Jn[a][0] * Jr[b] + Jn[a][1] * Jr[3 + b] +
+                                      Jn[a][2] * Jr[6 + b];
+                      Fd[3 * a + b] = Jd[a][0] * Jr[b] + Jd[a][1] * Jr[3 + b] +
+                                      Jd[a][2] * Jr[6 + b];
+                    }
+                auto C = [&](unsigned int i, unsigned int j) {
+                  return Fm[i] * Fm[j] + Fm[3 + i] * Fm[3 + j] +
+                         Fm[6 + i] * Fm[6 + j];
+                };
+                const double E[6] = {0.5 * (C(0, 0) - 1.),
+                                     0.5 * (C(1, 1) - 1.),
+                                     0.5 * (C(2, 2) - 1.),
+                                     0.5 * C(0, 1),
+                                     0.5 * C(1, 2),
+                                     0.5 * C(0, 2)};
+                double       old[6];
+                std::copy(sig, sig + 6, old);
+                material.compute_pk2_stress(Fm, E, sig, hst);
+                if (dt > 0)
+                  {
+                    // Seed Eq. (22c): rho_0 dw/dt = S : dE/dt,
+                    // dE/dt = sym(F^T dF/dt).
+                    auto Ed = [&](unsigned int i, unsigned int j) {
+                      return 0.5 * (Fm[i] * Fd[j] + Fm[3 + i] * Fd[3 + j] +
+                                    Fm[6 + i] * Fd[6 + j] + Fd[i] * Fm[j] +
+                                    Fd[3 + i] * Fm[3 + j] + Fd[6 + i] * Fm[6 + j]);
+                    };
+                    const double Edot[6] = {
+                      Ed(0, 0), Ed(1, 1), Ed(2, 2), Ed(0, 1), Ed(1, 2), Ed(0, 2)};
+                    double mid[6];
+                    for (unsigned int k = 0; k < 6; ++k)
+                      mid[k] = 0.5 * (old[k] + sig[k]);
+                    e_int += contract(mid, Edot) * dt * jxw;
+                  }
+                // First Piola-Kirchhoff P = F S, then G = P J_0^{-T}.
+                double Sm[3][3], P[3][3];
+                voigt_to_matrix(sig, Sm);
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int b = 0; b < 3; ++b)
+                    P[a][b] = Fm[3 * a] * Sm[0][b] + Fm[3 * a + 1] * Sm[1][b] +
+                              Fm[3 * a + 2] * Sm[2][b];
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    G[a][c] = P[a][0] * Jr[3 * c] + P[a][1] * Jr[3 * c + 1] +
+                              P[a][2] * Jr[3 * c + 2];
+              }
+
+            // f_Ia -= jxw * sum_c G_ac dN_I/dxi_c
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int a = 0; a < 3; ++a)
+                fe[n][a] -= jxw * (G[a][0] * dN[n][0] + G[a][1] * dN[n][1] +
+                                   G[a][2] * dN[n][2]);
+
+            if constexpr (I == Integration::one_point)
+              std::copy(&Ji[0][0], &Ji[0][0] + 9, &Jinv_c[0][0]);
+          }
+
+        if (result.inverted_element == long(e))
+          continue;
+
+        // @sect4{Flanagan-Belytschko hourglass control}
+        //
+        // gamma_jI = Gamma_jI - (Gamma_jK x_Ka) b_Ia with b_I = dN_I/dx at
+        // the centroid: orthogonal to every linear velocity field, so an
+        // affine motion produces no hourglass force on any mesh. The
+        // viscous force is seed Eq. (44) with alpha = Q rho V^(2/3) c / 4.
+        if constexpr (H != HourglassType::none)
+          {
+            const auto &dN = tables.dN[8];
+            double      gam[4][8];
+            for (unsigned int j = 0; j < 4; ++j)
+              {
+                double g[3] = {};
+                for (unsigned int n = 0; n < 8; ++n)
+                  for (unsigned int a = 0; a < 3; ++a)
+                    g[a] += tables.Gamma[j][n] * xe[n][a];
+                double t[3];
+                for (unsigned int c = 0; c < 3; ++c)
+                  t[c] = g[0] * Jinv_c[c][0] + g[1] * Jinv_c[c][1] +
+                         g[2] * Jinv_c[c][2];
+                for (unsigned int n = 0; n < 8; ++n)
+                  gam[j][n] = tables.Gamma[j][n] - (t[0] * dN[n][0] +
+                                                    t[1] * dN[n][1] +
+                                                    t[2] * dN[n][2]);
+              }
+            double h[3][4];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int j = 0; j < 4; ++j)
+                {
+                  double s = 0;
+                  for (unsigned int n = 0; n < 8; ++n)
+                    s += ve[n][a] * gam[j][n];
+                  h[a][j] = s;
+                }
+            const double rho = rho0 * reference_volume[e] / volume;
+            double       k;
+            double       r[3][4];
+            if constexpr (H == HourglassType::viscous)
+              {
+                const double c = std::sqrt(M / rho);
+                k = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * c;
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int j = 0; j < 4; ++j)
+                    r[a][j] = k * h[a][j];
+              }
+            else
+              {
+                k         = 0.25 * hourglass_coefficient * M * std::cbrt(volume);
+                double *q = &hourglass_modes[12 * e];
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int j = 0; j < 4; ++j)
+                    {
+                      q[4 * a + j] += dt * h[a][j];
+                      r[a][j] = k * q[4 * a + j];
+                    }
+              }
+            // Work of the hourglass forces over the last step by the
+            // trapezoidal rule, (r^{n-1} + r^n)/2 . h^{n-1/2} dt: the same
+            // rule by which the central difference scheme moves energy, so
+            // the balance also closes for modes that flip sign every step.
+            double  power = 0;
+            double *r_old = &hourglass_resistance[12 * e];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int j = 0; j < 4; ++j)
+                {
+                  power += 0.5 * (r_old[4 * a + j] + r[a][j]) * h[a][j];
+                  r_old[4 * a + j] = r[a][j];
+                }
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int a = 0; a < 3; ++a)
+                fe[n][a] -= r[a][0] * gam[0][n] + r[a][1] * gam[1][n] +
+                            r[a][2] * gam[2][n] + r[a][3] * gam[3][n];
+            hourglass_energy[e] += power * dt;
+            result.hourglass_energy_increment += power * dt;
+          }
+
+        internal_energy[e] += e_int;
+        result.internal_energy_increment += e_int;
+
+        // Stable time step of this element: L_e / c with the current
+        // density rho_0 V_0 / V (seed Eq. (23)).
+        const double rho_c = rho0 * reference_volume[e] / volume;
+        min_dt2 = std::min(min_dt2, 4. / max_grad2 * rho_c / M);
+
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            force[en[n] + a] += fe[n][a];
+      }
+    result.critical_time_step = std::sqrt(min_dt2);
+    return result;
+  }
+
+
+  void ElementGroup::cauchy_stress(const unsigned int e,
+                                   const double      *x,
+                                   double            *sigma) const
+  {
+    std::fill(sigma, sigma + 6, 0.);
+    for (unsigned int qq = 0; qq < n_qp; ++qq)
+      {
+        const double *s = stress(e, qq);
+        if (formulation == Formulation::updated_lagrangian)
+          {
+            for (unsigned int k = 0; k < 6; ++k)
+              sigma[k] += s[k] / n_qp;
+            continue;
+          }
+        // sigma = F S F^T / det F
+        const unsigned int q  = (n_qp == 1 ? 8 : qq);
+        const double      *Jr = &jacobian_inverse_ref[9 * (e * n_qp + qq)];
+        double             Jn[3][3] = {};
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              Jn[a][c] += x[nodes[8 * e + n] + a] * tables.dN[q][n][c];
+        double Fm[3][3];
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            Fm[a][b] = Jn[a][0] * Jr[b] + Jn[a][1] * Jr[3 + b] +
+                       Jn[a][2] * Jr[6 + b];
+        const double J = det3(Fm);
+        double       S[3][3], T[3][3];
+        voigt_to_matrix(s, S);
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            T[a][b] = Fm[a][0] * S[0][b] + Fm[a][1] * S[1][b] + Fm[a][2] * S[2][b];
+        auto c = [&](unsigned int i, unsigned int j) {
+          return (T[i][0] * Fm[j][0] + T[i][1] * Fm[j][1] + T[i][2] * Fm[j][2]) / J;
+        };
+        sigma[0] += c(0, 0) / n_qp;
+        sigma[1] += c(1, 1) / n_qp;
+        sigma[2] += c(2, 2) / n_qp;
+        sigma[3] += c(0, 1) / n_qp;
+        sigma[4] += c(1, 2) / n_qp;
+        sigma[5] += c(0, 2) / n_qp;
+      }
+  }
+} // namespace anvil::Element

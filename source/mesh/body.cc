@@ -1,0 +1,247 @@
+#include <anvil/mesh/body.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <fstream>
+
+namespace anvil
+{
+  namespace
+  {
+    dealii::Tensor<1, 3> parse_vector(const std::string &text,
+                                      const std::string &entry)
+    {
+      const auto parts =
+        dealii::Utilities::split_string_list(text, ',');
+      if (parts.size() != 3)
+        throw InputError("entry '" + entry + "' = '" + text +
+                         "' must have three comma-separated components");
+      dealii::Tensor<1, 3> t;
+      for (unsigned int d = 0; d < 3; ++d)
+        t[d] = dealii::Utilities::string_to_double(parts[d]);
+      return t;
+    }
+  } // namespace
+
+
+  void Body::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using namespace dealii;
+    prm.enter_subsection("Mesh");
+    {
+      prm.declare_entry(
+        "Source",
+        "box",
+        Patterns::Selection("box|cylinder|file"),
+        "Where the mesh comes from: 'box' (a subdivided rectangular block "
+        "between two corners; boundary ids 0..5 on the faces x-, x+, y-, "
+        "y+, z-, z+), 'cylinder' (axis along x, centred on the origin "
+        "before the offset; boundary ids 0 hull, 1 at x-, 2 at x+), or "
+        "'file' (Gmsh .msh or ABAQUS .inp; boundary ids from the file).");
+      prm.declare_entry("Lower corner",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Box: lowest corner. Units: m.");
+      prm.declare_entry("Upper corner",
+                        "1, 1, 1",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Box: highest corner. Units: m.");
+      prm.declare_entry("Subdivisions",
+                        "1, 1, 1",
+                        Patterns::List(Patterns::Integer(1), 3, 3),
+                        "Box: number of elements along x, y, z before "
+                        "refinement. Units: none.");
+      prm.declare_entry("Radius",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "Cylinder: radius. Units: m.");
+      prm.declare_entry("Length",
+                        "1",
+                        Patterns::Double(0.),
+                        "Cylinder: length along x. Units: m.");
+      prm.declare_entry("Axial subdivisions",
+                        "1",
+                        Patterns::Integer(1),
+                        "Cylinder: elements along the axis before "
+                        "refinement. Units: none.");
+      prm.declare_entry("File name",
+                        "",
+                        Patterns::Anything(),
+                        "File: mesh file (.msh or .inp), relative to the "
+                        "scene file's directory.");
+      prm.declare_entry("Scale",
+                        "1",
+                        Patterns::Double(0.),
+                        "File: factor applied to the coordinates read "
+                        "(e.g. 0.001 for a mesh in mm). Units: none.");
+      prm.declare_entry("Offset",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Translation applied to the generated or read "
+                        "mesh. Units: m.");
+      prm.declare_entry("Global refinements",
+                        "0",
+                        Patterns::Integer(0, 8),
+                        "Times every element is split into eight. "
+                        "Units: none.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Material");
+    MaterialModel::declare_parameters(prm);
+    prm.leave_subsection();
+
+    prm.declare_entry("Formulation",
+                      "updated Lagrangian",
+                      Patterns::Selection("updated Lagrangian|total Lagrangian"),
+                      "Lagrangian description (seed section 3.5): 'updated "
+                      "Lagrangian' (Cauchy stress, Jaumann rate) or 'total "
+                      "Lagrangian' (second Piola-Kirchhoff stress, "
+                      "Green-Lagrange strain).");
+    prm.declare_entry("Integration",
+                      "one point",
+                      Patterns::Selection("one point|full"),
+                      "Element integration: 'one point' (centroid, seed "
+                      "Eq. (39), with hourglass control) or 'full' (2x2x2 "
+                      "Gauss).");
+    prm.enter_subsection("Hourglass control");
+    prm.declare_entry("Type",
+                      "viscous",
+                      Patterns::Selection("viscous|stiffness|none"),
+                      "Flanagan-Belytschko hourglass control of one-point "
+                      "elements: 'viscous' (seed Eq. (44)), 'stiffness', or "
+                      "'none'.");
+    prm.declare_entry("Coefficient",
+                      "0.1",
+                      Patterns::Double(0., 1.),
+                      "Q_hg of seed Eq. (44), typically 0.05-0.15; for the "
+                      "stiffness form the force is Q_hg (lambda + 2 mu) "
+                      "V^(1/3) / 4 per unit hourglass displacement. Units: "
+                      "none.");
+    prm.leave_subsection();
+    prm.declare_entry("Initial velocity",
+                      "0, 0, 0",
+                      Patterns::List(Patterns::Double(), 3, 3),
+                      "Initial velocity of every node of the body. Units: "
+                      "m/s.");
+  }
+
+
+  void Body::parse_parameters(dealii::ParameterHandler &prm,
+                              const std::string        &body_name,
+                              const std::string        &scene_directory)
+  {
+    name = body_name;
+    prm.enter_subsection("Mesh");
+    {
+      mesh_source = prm.get("Source");
+      lower       = dealii::Point<3>(parse_vector(prm.get("Lower corner"),
+                                            "Lower corner"));
+      upper       = dealii::Point<3>(parse_vector(prm.get("Upper corner"),
+                                            "Upper corner"));
+      subdivisions.clear();
+      for (const auto &s :
+           dealii::Utilities::split_string_list(prm.get("Subdivisions")))
+        subdivisions.push_back(dealii::Utilities::string_to_int(s));
+      radius             = prm.get_double("Radius");
+      length             = prm.get_double("Length");
+      axial_subdivisions = prm.get_integer("Axial subdivisions");
+      file_name          = prm.get("File name");
+      if (!file_name.empty() && file_name[0] != '/')
+        file_name = scene_directory + "/" + file_name;
+      scale       = prm.get_double("Scale");
+      offset      = parse_vector(prm.get("Offset"), "Offset");
+      refinements = prm.get_integer("Global refinements");
+    }
+    prm.leave_subsection();
+
+    if (mesh_source == "box")
+      for (unsigned int d = 0; d < 3; ++d)
+        if (!(upper[d] > lower[d]))
+          throw InputError("subsection 'Body " + name +
+                           "/Mesh': 'Upper corner' must exceed 'Lower "
+                           "corner' in every component");
+    if (mesh_source == "cylinder" && (radius <= 0 || length <= 0))
+      throw InputError("subsection 'Body " + name +
+                       "/Mesh': cylinder needs positive 'Radius' and 'Length'");
+    if (mesh_source == "file")
+      {
+        if (file_name.empty())
+          throw InputError("subsection 'Body " + name +
+                           "/Mesh': 'Source = file' needs 'File name'");
+        if (!std::ifstream(file_name))
+          throw InputError("subsection 'Body " + name + "/Mesh': mesh file '" +
+                           file_name + "' cannot be opened");
+      }
+
+    prm.enter_subsection("Material");
+    material = MaterialModel::create(prm);
+    prm.leave_subsection();
+
+    formulation = prm.get("Formulation") == "total Lagrangian" ?
+                    Formulation::total_lagrangian :
+                    Formulation::updated_lagrangian;
+    if (!material->supports(formulation))
+      throw InputError("subsection 'Body " + name + "': material model '" +
+                       prm.get("Material") + "' does not support the " +
+                       to_string(formulation) + " formulation");
+    integration = prm.get("Integration") == "full" ?
+                    Element::Integration::full :
+                    Element::Integration::one_point;
+    prm.enter_subsection("Hourglass control");
+    {
+      const std::string t = prm.get("Type");
+      hourglass = (t == "viscous"   ? Element::HourglassType::viscous :
+                   t == "stiffness" ? Element::HourglassType::stiffness :
+                                      Element::HourglassType::none);
+      hourglass_coefficient = prm.get_double("Coefficient");
+    }
+    prm.leave_subsection();
+    initial_velocity =
+      parse_vector(prm.get("Initial velocity"), "Initial velocity");
+  }
+
+
+  void Body::create_mesh(dealii::Triangulation<3> &tria) const
+  {
+    using namespace dealii;
+    if (mesh_source == "box")
+      GridGenerator::subdivided_hyper_rectangle(
+        tria, subdivisions, lower, upper, /*colorize=*/true);
+    else if (mesh_source == "cylinder")
+      GridGenerator::subdivided_cylinder(tria,
+                                         axial_subdivisions,
+                                         radius,
+                                         0.5 * length);
+    else
+      {
+        GridIn<3> grid_in;
+        grid_in.attach_triangulation(tria);
+        std::ifstream in(file_name);
+        const auto    ext = file_name.substr(file_name.find_last_of('.') + 1);
+        try
+          {
+            if (ext == "msh")
+              grid_in.read_msh(in);
+            else if (ext == "inp")
+              grid_in.read_abaqus(in);
+            else
+              throw InputError("mesh file '" + file_name +
+                               "': unknown extension (allowed: .msh, .inp)");
+          }
+        catch (const ExceptionBase &e)
+          {
+            throw InputError("mesh file '" + file_name +
+                             "' cannot be read: " + one_line_message(e));
+          }
+        if (scale != 1.)
+          GridTools::scale(scale, tria);
+      }
+    tria.refine_global(refinements);
+    if (offset.norm() > 0)
+      GridTools::shift(offset, tria);
+  }
+} // namespace anvil

@@ -1,0 +1,227 @@
+/**
+ * @file
+ * Histories (CSV) and fields (VTU/PVTU with a PVD time series).
+ */
+#include <anvil/simulator/simulator.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  // @sect3{Histories}
+  //
+  // energy.csv every history interval, one probe_NAME.csv per probe and one
+  // contact_NAME.csv per contact pair. Rank 0 writes; probe values come
+  // from the rank that owns the probed node.
+  void Simulator::write_history(const double t)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+
+    std::vector<double> probe_values(6 * probes.size(), 0.);
+    for (unsigned int p = 0; p < probes.size(); ++p)
+      if (position.locally_owned_elements().is_element(probes[p].x_dof))
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            const auto g              = probes[p].x_dof + d;
+            probe_values[6 * p + d]     = position(g) - reference_position(g);
+            probe_values[6 * p + 3 + d] = velocity(g);
+          }
+    if (!probes.empty())
+      Utilities::MPI::sum(probe_values, mpi_communicator, probe_values);
+
+    // Linear momentum of each body, sum m v over the owned dofs.
+    std::vector<double> momentum(3 * bodies.size(), 0.);
+    for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
+      momentum[3 * dof_body[i] + dof_component[i]] +=
+        mass.local_element(i) * velocity.local_element(i);
+    Utilities::MPI::sum(momentum, mpi_communicator, momentum);
+    if (!root)
+      return;
+
+    if (!energy_file.is_open())
+      {
+        energy_file.open(output_directory + "/energy.csv");
+        energy_file << "time,kinetic,internal,hourglass,contact,friction,"
+                       "external_work,total,balance_error\n";
+        momentum_file.open(output_directory + "/momentum.csv");
+        momentum_file << "time";
+        for (const auto &b : bodies)
+          momentum_file << ',' << b.name << "_px," << b.name << "_py," << b.name << "_pz";
+        momentum_file << ",px,py,pz\n";
+        for (const auto &p : probes)
+          {
+            probe_files.emplace_back(output_directory + "/probe_" + p.name + ".csv");
+            probe_files.back() << "time,ux,uy,uz,vx,vy,vz\n";
+          }
+        for (const auto &c : contact_pairs)
+          {
+            contact_files.emplace_back(output_directory + "/contact_" + c.name + ".csv");
+            contact_files.back()
+              << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration\n";
+          }
+      }
+    energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
+                << energies.internal << ',' << energies.hourglass << ','
+                << energies.contact << ',' << energies.friction << ','
+                << energies.external_work << ',' << energies.total() << ','
+                << balance_error << '\n';
+    momentum_file << std::setprecision(15) << t;
+    double total[3] = {0, 0, 0};
+    for (unsigned int k = 0; k < momentum.size(); ++k)
+      {
+        momentum_file << ',' << momentum[k];
+        total[k % 3] += momentum[k];
+      }
+    momentum_file << ',' << total[0] << ',' << total[1] << ',' << total[2] << '\n';
+    for (unsigned int p = 0; p < probes.size(); ++p)
+      {
+        probe_files[p] << std::setprecision(12) << t;
+        for (unsigned int k = 0; k < 6; ++k)
+          probe_files[p] << ',' << probe_values[6 * p + k];
+        probe_files[p] << '\n';
+      }
+    for (unsigned int c = 0; c < contact_pairs.size(); ++c)
+      {
+        const auto &r = contact_results[c];
+        contact_files[c] << std::setprecision(12) << t << ',' << r.force_on_first[0]
+                         << ',' << r.force_on_first[1] << ',' << r.force_on_first[2]
+                         << ',' << r.max_penetration << '\n';
+      }
+    if (step_number % 100 == 0)
+      {
+        energy_file.flush();
+        momentum_file.flush();
+        for (auto &f : probe_files)
+          f.flush();
+        for (auto &f : contact_files)
+          f.flush();
+      }
+  }
+
+
+  // @sect3{Fields}
+  //
+  // Output is not on the hot path: strains come from FEValues at the cell
+  // centre (the tutorial path), stresses from the element groups.
+  void Simulator::output_results(const double t, const std::string &basename)
+  {
+    TimerOutput::Scope timer_scope(*timer, "output");
+    VectorType         displacement(position);
+    displacement -= reference_position;
+    displacement.update_ghost_values();
+
+    const unsigned int    n_cells = triangulation.n_active_cells();
+    std::vector<Vector<float>> stress(6, Vector<float>(n_cells));
+    std::vector<Vector<float>> strain(6, Vector<float>(n_cells));
+    Vector<float> von_mises(n_cells), hourglass_density(n_cells), internal_density(n_cells);
+    Vector<float> body_id(n_cells), rank(n_cells);
+    const float   my_rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+
+    const double *x = position.begin();
+    for (const auto &group : element_groups)
+      for (unsigned int e = 0; e < group.n_elements(); ++e)
+        {
+          const unsigned int c = group.element_cell_index(e);
+          double             s[6];
+          group.cauchy_stress(e, x, s);
+          for (unsigned int k = 0; k < 6; ++k)
+            stress[k][c] = s[k];
+          const double p = (s[0] + s[1] + s[2]) / 3.;
+          von_mises[c]   = std::sqrt(1.5 * ((s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
+                                          (s[2] - p) * (s[2] - p) +
+                                          2. * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+          const double V0      = group.element_reference_volume(e);
+          hourglass_density[c] = group.element_hourglass_energy(e) / V0;
+          internal_density[c]  = group.element_internal_energy(e) / V0;
+        }
+
+    const QMidpoint<3>                 centre;
+    FEValues<3>                        fe_values(fe, centre, update_gradients);
+    std::vector<Tensor<2, 3>>          grad(1);
+    const FEValuesExtractors::Vector   u(0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const unsigned int c = cell->active_cell_index();
+          fe_values.reinit(cell);
+          fe_values[u].get_function_gradients(displacement, grad);
+          const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad[0];
+          const Tensor<2, 3> E = 0.5 * (transpose(F) * F - unit_symmetric_tensor<3>());
+          const unsigned int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+          for (unsigned int k = 0; k < 6; ++k)
+            strain[k][c] = E[ij[k][0]][ij[k][1]];
+          body_id[c] = cell->material_id();
+          rank[c]    = my_rank;
+        }
+
+    DataOut<3> data_out;
+    data_out.attach_dof_handler(dof_handler);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      vector_kind(3, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(displacement,
+                             std::vector<std::string>(3, "displacement"),
+                             DataOut<3>::type_dof_data,
+                             vector_kind);
+    data_out.add_data_vector(velocity,
+                             std::vector<std::string>(3, "velocity"),
+                             DataOut<3>::type_dof_data,
+                             vector_kind);
+    const char *names[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+    for (unsigned int k = 0; k < 6; ++k)
+      {
+        data_out.add_data_vector(stress[k], std::string("stress_") + names[k]);
+        data_out.add_data_vector(strain[k], std::string("strain_") + names[k]);
+      }
+    data_out.add_data_vector(von_mises, "von_mises");
+    data_out.add_data_vector(internal_density, "internal_energy_density");
+    data_out.add_data_vector(hourglass_density, "hourglass_energy_density");
+    data_out.add_data_vector(body_id, "body");
+    data_out.add_data_vector(rank, "mpi_rank");
+    data_out.build_patches();
+
+    DataOutBase::VtkFlags flags;
+    flags.time  = t;
+    flags.cycle = output_count;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    data_out.set_flags(flags);
+    if (basename == "solution")
+      {
+        const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+          output_directory + "/", basename, output_count, mpi_communicator, 4);
+        pvd_records.emplace_back(t, pvtu);
+        ++output_count;
+      }
+    else
+      {
+        const std::string file = output_directory + "/" + basename;
+        data_out.write_vtu_in_parallel(file + ".vtu", mpi_communicator);
+        if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+          {
+            std::ofstream pvtu(file + ".pvtu");
+            data_out.write_pvtu_record(pvtu, {basename + ".vtu"});
+          }
+      }
+  }
+
+
+  void Simulator::write_pvd()
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ofstream pvd(output_directory + "/solution.pvd");
+    DataOutBase::write_pvd_record(pvd, pvd_records);
+    energy_file.flush();
+    momentum_file.flush();
+    for (auto &f : probe_files)
+      f.flush();
+    for (auto &f : contact_files)
+      f.flush();
+  }
+} // namespace anvil

@@ -1,0 +1,281 @@
+/**
+ * @file
+ * The scene file: declaration, two-pass parsing and checks.
+ *
+ * A scene names its bodies, boundary conditions, contact pairs and probes in
+ * lists at the top level; each name then has its own subsection ("Body
+ * rod_a", ...). The lists are read first (unknown entries skipped), then the
+ * whole file is parsed strictly against the full declaration, so a
+ * misspelled entry is an error, not a silently ignored line.
+ */
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <filesystem>
+#include <set>
+
+namespace anvil
+{
+  namespace
+  {
+    std::vector<std::string> names(const std::string &list)
+    {
+      return dealii::Utilities::split_string_list(list, ',');
+    }
+
+    void declare_lists(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      prm.declare_entry("Bodies",
+                        "body",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of the scene's bodies; each has a subsection "
+                        "'Body NAME'.");
+      prm.declare_entry("Boundary conditions",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of kinematic boundary conditions; each has a "
+                        "subsection 'Boundary condition NAME'.");
+      prm.declare_entry("Contact pairs",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of contact pairs; each has a subsection "
+                        "'Contact pair NAME'. No contact search runs "
+                        "without pairs.");
+      prm.declare_entry("Probes",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of probe points; each has a subsection "
+                        "'Probe NAME' and writes probe_NAME.csv.");
+    }
+  } // namespace
+
+
+  void Simulator::declare_parameters(dealii::ParameterHandler       &prm,
+                                     const std::vector<std::string> &body_names,
+                                     const std::vector<std::string> &bc_names,
+                                     const std::vector<std::string> &pair_names,
+                                     const std::vector<std::string> &probe_names)
+  {
+    using namespace dealii;
+    declare_lists(prm);
+    prm.enter_subsection("Simulation");
+    {
+      prm.declare_entry("Name",
+                        "",
+                        Patterns::Anything(),
+                        "Scene name; results go to OUTPUT DIRECTORY/NAME. "
+                        "Empty: the parameter file's name without .prm.");
+      prm.declare_entry("Output directory",
+                        "output",
+                        Patterns::Anything(),
+                        "Directory under which the scene's result directory "
+                        "is made, relative to the working directory.");
+      prm.declare_entry("Overwrite existing output",
+                        "false",
+                        Patterns::Bool(),
+                        "If false, a run stops before it starts when its "
+                        "result directory already holds results.");
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(0.),
+                        "Simulated time. Units: s.");
+      prm.declare_entry("Time step safety factor",
+                        "0.9",
+                        Patterns::Double(0.),
+                        "Factor on the stable time step min_e L_e / c_e. "
+                        "Units: none.");
+      prm.declare_entry("Maximum number of steps",
+                        "100000000",
+                        Patterns::Integer(1),
+                        "The run stops with an error after this many steps. "
+                        "Units: none.");
+      prm.declare_entry("Output interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Time between VTU field outputs; 0 writes only the "
+                        "first and last state. Units: s.");
+      prm.declare_entry("History interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Time between rows of the CSV histories; 0 writes "
+                        "every step. Units: s.");
+      prm.declare_entry("Energy balance tolerance",
+                        "0.05",
+                        Patterns::Double(0.),
+                        "The run stops when the total energy has grown by "
+                        "more than this fraction of max(E_kin, E_int, E_0) "
+                        "beyond the external work. Units: none.");
+      prm.declare_entry("Print wall times",
+                        "true",
+                        Patterns::Bool(),
+                        "Print the TimerOutput summary and the estimated "
+                        "time left (off for comparable screen output).");
+    }
+    prm.leave_subsection();
+
+    for (const auto &b : body_names)
+      {
+        prm.enter_subsection("Body " + b);
+        Body::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    for (const auto &b : bc_names)
+      {
+        prm.enter_subsection("Boundary condition " + b);
+        BoundaryCondition::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    for (const auto &p : pair_names)
+      {
+        prm.enter_subsection("Contact pair " + p);
+        Contact::PenaltyContact::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    for (const auto &p : probe_names)
+      {
+        prm.enter_subsection("Probe " + p);
+        prm.declare_entry("Point",
+                          "0, 0, 0",
+                          Patterns::List(Patterns::Double(), 3, 3),
+                          "Reference position; the probe follows the "
+                          "nearest node of 'Body'. Units: m.");
+        prm.declare_entry("Body", "", Patterns::Anything(),
+                          "Body whose node is probed (required when bodies "
+                          "touch).");
+        prm.leave_subsection();
+      }
+  }
+
+
+  void Simulator::print_parameters(std::ostream &out)
+  {
+    dealii::ParameterHandler prm;
+    declare_parameters(prm, {"body"}, {"support"}, {"pair"}, {"probe"});
+    prm.print_parameters(out,
+                         dealii::ParameterHandler::OutputStyle::PRM |
+                           dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
+  }
+
+
+  void Simulator::parse_parameters(const std::string &parameter_file)
+  {
+    if (!std::filesystem::exists(parameter_file))
+      throw InputError(parameter_file + ": the scene file does not exist");
+    scene_file = parameter_file;
+
+    auto parse = [&](dealii::ParameterHandler &prm, const bool skip) {
+      try
+        {
+          prm.parse_input(parameter_file, "", skip);
+        }
+      catch (const dealii::ExceptionBase &e)
+        {
+          throw InputError(parameter_file + ": " + one_line_message(e));
+        }
+    };
+
+    // Pass 1: the lists of names.
+    dealii::ParameterHandler lists;
+    declare_lists(lists);
+    parse(lists, true);
+    const auto body_names  = names(lists.get("Bodies"));
+    const auto bc_names    = names(lists.get("Boundary conditions"));
+    const auto pair_names  = names(lists.get("Contact pairs"));
+    const auto probe_names = names(lists.get("Probes"));
+    for (const auto *list : {&body_names, &bc_names, &pair_names, &probe_names})
+      if (std::set<std::string>(list->begin(), list->end()).size() != list->size())
+        throw InputError(parameter_file + ": a name appears twice in one of "
+                                          "'Bodies', 'Boundary conditions', "
+                                          "'Contact pairs', 'Probes'");
+    if (body_names.empty())
+      throw InputError(parameter_file + ": entry 'Bodies' names no body");
+
+    // Pass 2: everything, strictly.
+    dealii::ParameterHandler prm;
+    declare_parameters(prm, body_names, bc_names, pair_names, probe_names);
+    parse(prm, false);
+
+    const std::string dir =
+      std::filesystem::path(parameter_file).parent_path().string();
+    try
+      {
+        prm.enter_subsection("Simulation");
+        scene_name = prm.get("Name");
+        if (scene_name.empty())
+          scene_name = std::filesystem::path(parameter_file).stem().string();
+        output_directory = prm.get("Output directory") + "/" + scene_name;
+        overwrite_output = prm.get_bool("Overwrite existing output");
+        end_time         = prm.get_double("End time");
+        time_step_factor = prm.get_double("Time step safety factor");
+        max_steps        = prm.get_integer("Maximum number of steps");
+        output_interval  = prm.get_double("Output interval");
+        history_interval = prm.get_double("History interval");
+        energy_tolerance = prm.get_double("Energy balance tolerance");
+        print_wall_times = prm.get_bool("Print wall times");
+        prm.leave_subsection();
+        if (time_step_factor <= 0)
+          throw InputError("entry 'Simulation/Time step safety factor' must "
+                           "be positive");
+
+        bodies.resize(body_names.size());
+        for (unsigned int b = 0; b < body_names.size(); ++b)
+          {
+            prm.enter_subsection("Body " + body_names[b]);
+            bodies[b].parse_parameters(prm, body_names[b], dir.empty() ? "." : dir);
+            prm.leave_subsection();
+          }
+        auto check_body = [&](const std::string &name, const std::string &where) {
+          if (std::find(body_names.begin(), body_names.end(), name) ==
+              body_names.end())
+            throw InputError("subsection '" + where + "': body '" + name +
+                             "' is not in 'Bodies' (" + lists.get("Bodies") +
+                             ")");
+        };
+        boundary_conditions.resize(bc_names.size());
+        for (unsigned int i = 0; i < bc_names.size(); ++i)
+          {
+            prm.enter_subsection("Boundary condition " + bc_names[i]);
+            boundary_conditions[i].parse_parameters(prm, bc_names[i]);
+            prm.leave_subsection();
+            check_body(boundary_conditions[i].body,
+                       "Boundary condition " + bc_names[i]);
+          }
+        contact_pairs.resize(pair_names.size());
+        for (unsigned int i = 0; i < pair_names.size(); ++i)
+          {
+            prm.enter_subsection("Contact pair " + pair_names[i]);
+            contact_pairs[i].parse_parameters(prm, pair_names[i]);
+            prm.leave_subsection();
+            check_body(contact_pairs[i].first_body, "Contact pair " + pair_names[i]);
+            check_body(contact_pairs[i].second_body, "Contact pair " + pair_names[i]);
+            if (contact_pairs[i].penalty_factor > 0.4)
+              pcout << "Warning: contact pair '" << pair_names[i]
+                    << "': penalty scale factor "
+                    << contact_pairs[i].penalty_factor
+                    << " > 0.4 (seed section 4.3); the penalty springs may "
+                       "need a smaller time step than the elements."
+                    << std::endl;
+          }
+        probes.resize(probe_names.size());
+        for (unsigned int i = 0; i < probe_names.size(); ++i)
+          {
+            prm.enter_subsection("Probe " + probe_names[i]);
+            probes[i].name = probe_names[i];
+            const auto p   = dealii::Utilities::split_string_list(prm.get("Point"));
+            for (unsigned int d = 0; d < 3; ++d)
+              probes[i].point[d] = dealii::Utilities::string_to_double(p[d]);
+            probes[i].body = prm.get("Body");
+            prm.leave_subsection();
+            if (!probes[i].body.empty())
+              check_body(probes[i].body, "Probe " + probe_names[i]);
+          }
+      }
+    catch (const InputError &e)
+      {
+        throw InputError(parameter_file + ": " + e.what());
+      }
+  }
+} // namespace anvil

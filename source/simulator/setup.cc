@@ -1,0 +1,412 @@
+/**
+ * @file
+ * Setting up a scene: one distributed triangulation for all bodies, the
+ * DoFs and ghosted nodal vectors, the element groups of the fast loop, the
+ * lumped mass, boundary conditions, contact surfaces and probes.
+ */
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <filesystem>
+#include <map>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  Simulator::Simulator(const std::string &parameter_file, MPI_Comm comm)
+    : mpi_communicator(comm)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , triangulation(comm)
+    , fe(FE_Q<3>(1), 3)
+    , dof_handler(triangulation)
+  {
+    parse_parameters(parameter_file);
+  }
+
+
+  // @sect3{The mesh}
+  //
+  // Each body builds its own serial mesh (generators may refine along
+  // curved manifolds); its active cells become coarse cells of the one
+  // distributed triangulation, with the body index as material id. Bodies
+  // never share vertices, even where they touch: contact, not the mesh,
+  // couples them.
+  void Simulator::make_grid()
+  {
+    std::vector<Point<3>>    vertices;
+    std::vector<CellData<3>> cells;
+    SubCellData              boundary;
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        Triangulation<3> tria;
+        bodies[b].create_mesh(tria);
+        const unsigned int offset = vertices.size();
+        std::vector<int>   new_index(tria.n_vertices(), -1);
+        const auto        &used = tria.get_used_vertices();
+        for (unsigned int v = 0; v < tria.n_vertices(); ++v)
+          if (used[v])
+            {
+              new_index[v] = vertices.size() - offset;
+              vertices.push_back(tria.get_vertices()[v]);
+            }
+        for (const auto &cell : tria.active_cell_iterators())
+          {
+            CellData<3> c(8);
+            for (unsigned int v = 0; v < 8; ++v)
+              c.vertices[v] = offset + new_index[cell->vertex_index(v)];
+            c.material_id = b;
+            cells.push_back(c);
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() != 0)
+                {
+                  CellData<2> q(4);
+                  for (unsigned int v = 0; v < 4; ++v)
+                    q.vertices[v] = offset + new_index[cell->face(f)->vertex_index(v)];
+                  q.boundary_id = cell->face(f)->boundary_id();
+                  boundary.boundary_quads.push_back(q);
+                }
+          }
+      }
+    try
+      {
+        triangulation.create_triangulation(vertices, cells, boundary);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("the scene's mesh is not valid: " + one_line_message(e));
+      }
+  }
+
+
+  void Simulator::setup_system()
+  {
+    dof_handler.distribute_dofs(fe);
+    const IndexSet owned = dof_handler.locally_owned_dofs();
+    IndexSet       relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    for (VectorType *v : {&reference_position, &position, &velocity, &force, &mass})
+      v->reinit(owned, relevant, mpi_communicator);
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (unsigned int v = 0; v < 8; ++v)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              const auto dof          = cell->vertex_dof_index(v, c);
+              reference_position(dof) = cell->vertex(v)[c];
+              velocity(dof) = bodies[cell->material_id()].initial_velocity[c];
+            }
+    position = reference_position;
+
+    dof_body.assign(position.locally_owned_size(), 0);
+    dof_component.assign(position.locally_owned_size(), 0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (unsigned int v = 0; v < 8; ++v)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              const auto dof = cell->vertex_dof_index(v, c);
+              if (owned.is_element(dof))
+                {
+                  dof_body[owned.index_within_set(dof)]      = cell->material_id();
+                  dof_component[owned.index_within_set(dof)] = c;
+                }
+            }
+  }
+
+
+  void Simulator::check()
+  {
+    make_grid();
+    setup_system();
+    setup_element_groups();
+    setup_boundary_conditions();
+    setup_contact();
+    setup_probes();
+    pcout << scene_file << ": scene '" << scene_name << "' is valid: "
+          << bodies.size() << " bodies, " << triangulation.n_global_active_cells()
+          << " elements, " << contact_pairs.size() << " contact pairs"
+          << std::endl;
+  }
+
+
+  // @sect3{Element groups}
+  //
+  // One group per body with its locally owned cells. A node is addressed
+  // by the local index of its x dof in the nodal vectors; y and z follow.
+  void Simulator::setup_element_groups()
+  {
+    element_groups.clear();
+    element_groups.reserve(bodies.size());
+    for (const auto &body : bodies)
+      element_groups.emplace_back(*body.material,
+                                  body.formulation,
+                                  body.integration,
+                                  body.hourglass,
+                                  body.hourglass_coefficient);
+    const auto &partitioner = position.get_partitioner();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::array<unsigned int, 8> node;
+          double                      X[8][3];
+          for (unsigned int v = 0; v < 8; ++v)
+            {
+              node[v] = partitioner->global_to_local(cell->vertex_dof_index(v, 0));
+              for (unsigned int c = 1; c < 3; ++c)
+                AssertThrow(partitioner->global_to_local(
+                              cell->vertex_dof_index(v, c)) == node[v] + c,
+                            ExcMessage("nodal dofs are not contiguous"));
+              for (unsigned int c = 0; c < 3; ++c)
+                X[v][c] = cell->vertex(v)[c];
+            }
+          element_groups[cell->material_id()].add_element(node,
+                                                          X,
+                                                          cell->active_cell_index());
+        }
+    for (auto &g : element_groups)
+      g.finalize();
+  }
+
+
+  // @sect3{Lumped mass}
+  //
+  // Row-sum lumping of the consistent mass M = int rho_0 N^T N dV_0 (seed
+  // Eq. (35)): M_II = int rho_0 N_I dV_0. This is set-up work, so it uses
+  // the tutorial path with FEValues.
+  void Simulator::assemble_lumped_mass()
+  {
+    mass = 0;
+    const QGauss<3>                      quadrature(2);
+    FEValues<3>                          fe_values(fe, quadrature, update_values | update_JxW_values);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const double rho = bodies[cell->material_id()].material->density();
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            {
+              double m = 0;
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                m += rho * fe_values.shape_value(i, q) * fe_values.JxW(q);
+              mass(dofs[i]) += m;
+            }
+        }
+    mass.compress(VectorOperation::add);
+    for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
+      AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
+  }
+
+
+  // @sect3{Boundary conditions}
+  void Simulator::setup_boundary_conditions()
+  {
+    std::map<types::global_dof_index, double> prescribed;
+    std::vector<unsigned int>                 matched(boundary_conditions.size(), 0);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (unsigned int v = 0; v < 8; ++v)
+          {
+            std::vector<unsigned int> ids;
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+                for (unsigned int fv = 0; fv < 4; ++fv)
+                  if (GeometryInfo<3>::face_to_cell_vertices(f, fv) == v)
+                    ids.push_back(cell->face(f)->boundary_id());
+            for (unsigned int k = 0; k < boundary_conditions.size(); ++k)
+              {
+                const auto &bc = boundary_conditions[k];
+                if (!bc.selects(bodies[cell->material_id()].name, cell->vertex(v), ids))
+                  continue;
+                for (unsigned int c = 0; c < 3; ++c)
+                  if (bc.components[c])
+                    {
+                      const auto dof = cell->vertex_dof_index(v, c);
+                      if (dof_handler.locally_owned_dofs().is_element(dof))
+                        {
+                          prescribed[dof] = bc.velocity[c];
+                          ++matched[k];
+                        }
+                    }
+              }
+          }
+    for (unsigned int k = 0; k < boundary_conditions.size(); ++k)
+      if (Utilities::MPI::sum(matched[k], mpi_communicator) == 0)
+        throw InputError(scene_file + ": subsection 'Boundary condition " +
+                         boundary_conditions[k].name +
+                         "' selects no node of body '" +
+                         boundary_conditions[k].body + "'");
+    constrained_dofs.clear();
+    constrained_velocity.clear();
+    for (const auto &[dof, value] : prescribed)
+      {
+        constrained_dofs.push_back(position.get_partitioner()->global_to_local(dof));
+        constrained_velocity.push_back(value);
+        velocity(dof) = value;
+      }
+  }
+
+
+  // @sect3{Contact surfaces}
+  //
+  // Every boundary face of a body in a pair is a segment. Each rank lists
+  // the segments of its own cells; all ranks then hold the whole surface.
+  void Simulator::setup_contact()
+  {
+    const unsigned int n_pairs = contact_pairs.size();
+    contact_local_index.assign(n_pairs, {});
+    contact_positions.assign(n_pairs, {});
+    contact_forces.assign(n_pairs, {});
+    contact_results.assign(n_pairs, {});
+    auto body_index = [&](const std::string &name) {
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b].name == name)
+          return b;
+      return numbers::invalid_unsigned_int;
+    };
+    for (unsigned int p = 0; p < n_pairs; ++p)
+      {
+        std::vector<Contact::SegmentDescription> segments[2];
+        const unsigned int body[2] = {body_index(contact_pairs[p].first_body),
+                                      body_index(contact_pairs[p].second_body)};
+        for (unsigned int s = 0; s < 2; ++s)
+          {
+            std::vector<double> local;
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (cell->is_locally_owned() && cell->material_id() == body[s])
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary())
+                    {
+                      const auto   face     = cell->face(f);
+                      const double A        = face->measure();
+                      const double V        = cell->measure();
+                      const double K        = bodies[body[s]].material->bulk_modulus();
+                      constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
+                      Point<3>               p[4];
+                      for (unsigned int k = 0; k < 4; ++k)
+                        p[k] = face->vertex(cyclic[k]);
+                      const Tensor<1, 3> n = cross_product_3d(p[1] - p[0], p[3] - p[0]);
+                      const bool flip = n * (face->center() - cell->center()) < 0;
+                      for (unsigned int k = 0; k < 4; ++k)
+                        {
+                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
+                          local.push_back(face->vertex_dof_index(kk, 0));
+                        }
+                      for (unsigned int k = 0; k < 4; ++k)
+                        {
+                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
+                          for (unsigned int d = 0; d < 3; ++d)
+                            local.push_back(face->vertex(kk)[d]);
+                        }
+                      local.push_back(K * A * A / V);
+                      local.push_back(V / A);
+                    }
+            for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+              for (std::size_t i = 0; i < part.size(); i += 18)
+                {
+                  Contact::SegmentDescription d;
+                  for (unsigned int k = 0; k < 4; ++k)
+                    d.x_dof[k] = static_cast<unsigned long>(part[i + k]);
+                  for (unsigned int k = 0; k < 12; ++k)
+                    d.reference_position[k] = part[i + 4 + k];
+                  d.stiffness = part[i + 16];
+                  d.depth     = part[i + 17];
+                  segments[s].push_back(d);
+                }
+          }
+        contact_pairs[p].setup(segments[0], segments[1]);
+        const auto &dofs = contact_pairs[p].node_dofs();
+        contact_local_index[p].resize(dofs.size());
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          contact_local_index[p][i] =
+            dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
+              long(position.get_partitioner()->global_to_local(dofs[i])) :
+              -1;
+        contact_positions[p].resize(3 * dofs.size());
+        contact_forces[p].resize(3 * dofs.size());
+      }
+  }
+
+
+  // @sect3{Probes}
+  void Simulator::setup_probes()
+  {
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    for (auto &probe : probes)
+      {
+        double best = 1e300;
+        double dof  = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              (probe.body.empty() || bodies[cell->material_id()].name == probe.body))
+            for (unsigned int v = 0; v < 8; ++v)
+              {
+                const auto d = cell->vertex_dof_index(v, 0);
+                if (!dof_handler.locally_owned_dofs().is_element(d))
+                  continue;
+                // Ties broken by position so that every partition picks
+                // the same node.
+                const double dist = cell->vertex(v).distance(probe.point);
+                if (dist < best - 1e-12 * (1 + best))
+                  {
+                    best = dist;
+                    dof  = d;
+                  }
+              }
+        const auto all = Utilities::MPI::all_gather(mpi_communicator,
+                                                    std::array<double, 3>{{best, dof, double(rank)}});
+        std::array<double, 3> chosen = all[0];
+        for (const auto &a : all)
+          if (a[0] < chosen[0] - 1e-12 * (1 + chosen[0]))
+            chosen = a;
+        probe.x_dof = static_cast<unsigned long>(chosen[1]);
+        probe.owner = static_cast<int>(chosen[2]);
+      }
+  }
+
+
+  void Simulator::prepare_output_directory()
+  {
+    int status = 0;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        namespace fs = std::filesystem;
+        if (fs::exists(output_directory + "/energy.csv") && !overwrite_output)
+          status = 1;
+        else
+          {
+            std::error_code ec;
+            fs::create_directories(output_directory, ec);
+            if (ec)
+              status = 2;
+            else
+              for (const auto &entry : fs::directory_iterator(output_directory))
+                {
+                  const auto ext = entry.path().extension().string();
+                  if (ext == ".vtu" || ext == ".pvtu" || ext == ".pvd" || ext == ".csv")
+                    fs::remove(entry.path());
+                }
+          }
+      }
+    status = Utilities::MPI::max(status, mpi_communicator);
+    if (status == 1)
+      throw InputError(scene_file + ": results of an earlier run exist in '" +
+                       output_directory +
+                       "'; set 'Overwrite existing output = true' in "
+                       "subsection 'Simulation' or choose another 'Output "
+                       "directory'");
+    if (status == 2)
+      throw InputError(scene_file + ": cannot create the output directory '" +
+                       output_directory + "'");
+  }
+} // namespace anvil

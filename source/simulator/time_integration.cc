@@ -1,0 +1,346 @@
+/**
+ * @file
+ * The explicit central-difference loop (seed section 3.6):
+ *
+ *   a^n       = M^{-1} (f_ext^n - f_int^n + f_contact^n)            (Eq. 35)
+ *   v^{n+1/2} = v^{n-1/2} + (dt^{n-1/2} + dt^{n+1/2}) / 2 a^n
+ *   x^{n+1}   = x^n + dt^{n+1/2} v^{n+1/2}
+ *
+ * with the lumped mass M, and dt^{n+1/2} = factor * min_e L_e / c_e from
+ * the configuration x^n.
+ */
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  // @sect3{Internal forces}
+  double Simulator::compute_internal_forces(const double dt_previous)
+  {
+    TimerOutput::Scope t(*timer, "element forces");
+    double             dt_crit = 1e300;
+    double             d_int = 0, d_hg = 0;
+    const double      *x     = position.begin();
+    const double      *v     = velocity.begin();
+    double            *f     = force.begin();
+    for (auto &group : element_groups)
+      {
+        const auto r = group.compute_internal_forces(x, v, dt_previous, f);
+        dt_crit      = std::min(dt_crit, r.critical_time_step);
+        d_int += r.internal_energy_increment;
+        d_hg += r.hourglass_energy_increment;
+        if (r.inverted_element >= 0 && inverted_cell < 0)
+          inverted_cell = group.element_cell_index(r.inverted_element);
+      }
+    std::vector<double> increments = {d_int, d_hg};
+    Utilities::MPI::sum(increments, mpi_communicator, increments);
+    energies.internal += increments[0];
+    energies.hourglass += increments[1];
+    return Utilities::MPI::min(dt_crit, mpi_communicator);
+  }
+
+
+  // @sect3{Contact}
+  //
+  // Positions of each pair's nodes are gathered to every rank, every rank
+  // evaluates the pair, and each keeps the forces on the nodes it owns.
+  void Simulator::apply_contact()
+  {
+    if (contact_pairs.empty())
+      return;
+    TimerOutput::Scope t(*timer, "contact");
+    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
+      {
+        auto &xs = contact_positions[p];
+        auto &fs = contact_forces[p];
+        std::fill(xs.begin(), xs.end(), 0.);
+        std::fill(fs.begin(), fs.end(), 0.);
+        const auto &index = contact_local_index[p];
+        for (unsigned int i = 0; i < index.size(); ++i)
+          if (index[i] >= 0)
+            for (unsigned int d = 0; d < 3; ++d)
+              xs[3 * i + d] = position.local_element(index[i] + d);
+        Utilities::MPI::sum(xs, mpi_communicator, xs);
+        contact_results[p] = contact_pairs[p].compute_forces(xs, fs);
+        for (unsigned int i = 0; i < index.size(); ++i)
+          if (index[i] >= 0)
+            for (unsigned int d = 0; d < 3; ++d)
+              force.local_element(index[i] + d) += fs[3 * i + d];
+      }
+  }
+
+
+  // @sect3{Central difference update}
+  //
+  // Also returns, through the energies, the kinetic energy at the integer
+  // time n as 1/2 v^{n-1/2} M v^{n+1/2}, the form that the leapfrog
+  // scheme conserves, and the work of the reaction forces at constrained
+  // dofs.
+  void Simulator::update_kinematics(const double dt_previous, const double dt)
+  {
+    TimerOutput::Scope t(*timer, "time integration");
+    const double       dt_avg = 0.5 * (dt_previous + dt);
+    const unsigned int n      = position.locally_owned_size();
+    double            *x      = position.begin();
+    double            *v      = velocity.begin();
+    const double      *f      = force.begin();
+    const double      *m      = mass.begin();
+    double             kinetic = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double v_old = v[i];
+        v[i] += dt_avg * f[i] / m[i];
+        kinetic += m[i] * v_old * v[i];
+      }
+    double work = 0;
+    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
+      {
+        const unsigned int i = constrained_dofs[k];
+        // Reaction R = M (v_prescribed - v_free) / dt_avg does work
+        // R v_prescribed dt over the coming step.
+        if (dt_avg > 0)
+          work += m[i] * (constrained_velocity[k] - v[i]) / dt_avg *
+                  constrained_velocity[k] * dt;
+        v[i] = constrained_velocity[k];
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      x[i] += dt * v[i];
+
+    std::vector<double> sums = {kinetic, work};
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    energies.kinetic = 0.5 * sums[0];
+    energies.external_work += sums[1];
+  }
+
+
+  // @sect3{Health checks}
+  //
+  // A numerical failure stops the run with a message naming the time, the
+  // step, the element and its position, after writing the last good state.
+  void Simulator::check_health(const double t, const unsigned int step)
+  {
+    const long int inverted = Utilities::MPI::max(inverted_cell, mpi_communicator);
+    std::string    problem;
+    if (inverted >= 0)
+      problem = "element " + std::to_string(inverted) + " is inverted (Jacobian <= 0)";
+    const double e_total = energies.total();
+    const double scale =
+      std::max({std::abs(energies.kinetic), std::abs(energies.internal), std::abs(initial_energy), 1e-300});
+    balance_error = std::abs(e_total - initial_energy - energies.external_work) / scale;
+    if (problem.empty() && !std::isfinite(e_total))
+      problem = "the energies are not finite (NaN or infinity)";
+    if (problem.empty() &&
+        (e_total - initial_energy - energies.external_work) > energy_tolerance * scale)
+      {
+        std::ostringstream s;
+        s << "the total energy grew by " << 100. * balance_error
+          << " % of max(E_kin, E_int, E_0) beyond the external work (limit "
+          << 100. * energy_tolerance
+          << " %, 'Energy balance tolerance'); the explicit step is unstable "
+             "(time step safety factor "
+          << time_step_factor << ")";
+        problem = s.str();
+      }
+    if (problem.empty())
+      {
+        if (step % 50 == 0)
+          {
+            good_position = position;
+            good_velocity = velocity;
+            good_time     = t;
+          }
+        return;
+      }
+
+    // Where: the element of the fastest node (or the inverted one).
+    double vmax = -1;
+    long   cell = -1;
+    for (const auto &group : element_groups)
+      for (unsigned int e = 0; e < group.n_elements(); ++e)
+        {
+          if (inverted >= 0 && long(group.element_cell_index(e)) != inverted)
+            continue;
+          for (const unsigned int node : group.element_nodes(e))
+            {
+              double s = 0;
+              for (unsigned int d = 0; d < 3; ++d)
+                s += velocity.local_element(node + d) * velocity.local_element(node + d);
+              if (!std::isfinite(s))
+                s = 1e308;
+              if (s > vmax)
+                {
+                  vmax = s;
+                  cell = group.element_cell_index(e);
+                }
+            }
+        }
+    const double global_max = Utilities::MPI::max(vmax, mpi_communicator);
+    Point<3>     where;
+    unsigned int body  = 0;
+    int          mine  = (vmax == global_max && cell >= 0) ?
+                           int(Utilities::MPI::this_mpi_process(mpi_communicator)) :
+                           -1;
+    const int    owner = Utilities::MPI::max(mine, mpi_communicator);
+    if (owner >= 0 && mine == owner)
+      for (const auto &c : triangulation.active_cell_iterators())
+        if (c->is_locally_owned() && long(c->active_cell_index()) == cell)
+          {
+            where = c->center();
+            body  = c->material_id();
+          }
+    std::array<double, 5> info{{where[0], where[1], where[2], double(body), double(cell)}};
+    if (owner >= 0)
+      info = Utilities::MPI::broadcast(mpi_communicator, info, owner);
+
+    // Leave the last good state on disk.
+    position = good_position;
+    velocity = good_velocity;
+    position.update_ghost_values();
+    velocity.update_ghost_values();
+    output_results(good_time, "last_good");
+
+    std::ostringstream msg;
+    msg << "numerical failure at t = " << t << " s, step " << step << ": "
+        << problem << "; at element " << long(info[4]) << " of body '"
+        << bodies[int(info[3])].name << "' near (" << info[0] << ", " << info[1]
+        << ", " << info[2] << "); last good state (t = " << good_time
+        << " s) written to " << output_directory << "/last_good.pvtu";
+    throw NumericalFailure(msg.str());
+  }
+
+
+  // @sect3{The run}
+  void Simulator::run()
+  {
+    timer = std::make_unique<TimerOutput>(mpi_communicator,
+                                          pcout,
+                                          print_wall_times ? TimerOutput::summary :
+                                                             TimerOutput::never,
+                                          TimerOutput::wall_times);
+    {
+      TimerOutput::Scope t(*timer, "setup");
+      make_grid();
+      setup_system();
+      setup_element_groups();
+      assemble_lumped_mass();
+      setup_boundary_conditions();
+      setup_contact();
+      setup_probes();
+      prepare_output_directory();
+      position.update_ghost_values();
+      velocity.update_ghost_values();
+      good_position = position;
+      good_velocity = velocity;
+    }
+
+    pcout << "Anvil: scene '" << scene_name << "' from " << scene_file << "\n"
+          << "  " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " MPI process(es), " << triangulation.n_global_active_cells()
+          << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
+    for (const auto &b : bodies)
+      pcout << "  body '" << b.name << "': " << to_string(b.formulation) << ", "
+            << Element::to_string(b.integration) << " integration"
+            << (b.integration == Element::Integration::one_point ?
+                  ", " + Element::to_string(b.hourglass) + " hourglass control" :
+                  std::string())
+            << "\n";
+    pcout << "  results in " << output_directory << "/" << std::endl;
+
+    // Step 0: forces of the initial state (stress free), energy E_0.
+    force = 0;
+    critical_dt = compute_internal_forces(0.);
+    apply_contact();
+    force.compress(VectorOperation::add);
+
+    double kinetic0 = 0;
+    for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
+      kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
+    energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
+    initial_energy   = energies.total();
+    output_results(0., "solution");
+
+    const auto   wall_start    = std::chrono::steady_clock::now();
+    double       dt_previous   = 0;
+    double       next_output   = output_interval;
+    double       next_history  = 0;
+    double       next_progress = 0;
+    const double eps           = 1e-12 * end_time;
+    while (true)
+      {
+        const bool last = time >= end_time - eps;
+        // The stable step from the current configuration (seed section
+        // 3.6); the last step only synchronises the velocity.
+        current_dt = last ? dt_previous : std::min(time_step_factor * critical_dt, end_time - time);
+        if (!(current_dt > 0))
+          current_dt = dt_previous;
+
+        // Contact energy of the configuration x^n.
+        energies.contact = 0;
+        for (const auto &r : contact_results)
+          energies.contact += r.energy;
+
+        update_kinematics(dt_previous, last ? 0. : current_dt);
+        check_health(time, step_number);
+        if (time >= next_history - eps || last)
+          {
+            write_history(time);
+            next_history += history_interval;
+          }
+        if (time >= next_progress - eps || last)
+          {
+            const double wall =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+            pcout << "  step " << std::setw(7) << step_number << "  t = " << std::setw(11)
+                  << std::setprecision(5) << time << " s  dt = " << std::setw(10)
+                  << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
+                  << "  E_int = " << std::setw(10) << energies.internal
+                  << "  balance = " << std::setw(9) << balance_error;
+            if (print_wall_times && time > 0)
+              pcout << "  left ~" << std::setprecision(3)
+                    << wall / time * (end_time - time) << " s";
+            pcout << std::endl;
+            next_progress += 0.1 * end_time;
+          }
+        if (last)
+          break;
+        if (step_number >= max_steps)
+          throw NumericalFailure("the run reached 'Maximum number of steps' = " +
+                                 std::to_string(max_steps) + " at t = " +
+                                 std::to_string(time) + " s");
+
+        position.update_ghost_values();
+        velocity.update_ghost_values();
+        time += current_dt;
+        ++step_number;
+        dt_previous = current_dt;
+
+        force = 0;
+        critical_dt = compute_internal_forces(dt_previous);
+        apply_contact();
+        force.compress(VectorOperation::add);
+
+        if (output_interval > 0 && time >= next_output - eps && time < end_time - eps)
+          {
+            output_results(time, "solution");
+            next_output += output_interval;
+          }
+      }
+    position.update_ghost_values();
+    velocity.update_ghost_values();
+    output_results(time, "solution");
+    write_pvd();
+    pcout << "  done: " << step_number << " steps to t = " << time
+          << " s, energy balance error " << balance_error << "\n"
+          << "  results: " << output_directory << "/energy.csv, "
+          << output_directory << "/solution.pvd" << std::endl;
+  }
+} // namespace anvil

@@ -1,0 +1,106 @@
+"""Shared helpers of Anvil's scene tests: run the executable, read its CSV
+output, and report every check as 'measured / expected / tolerance'."""
+
+import argparse
+import csv
+import os
+import subprocess
+import sys
+
+
+class Checker:
+    """Collects checks; exit status 1 if any failed."""
+
+    def __init__(self, title):
+        self.title = title
+        self.failed = 0
+        self.passed = 0
+        print(f"== {title}")
+
+    def check(self, name, measured, expected, tolerance, relative=False):
+        """Pass when |measured - expected| <= tolerance (times |expected| if
+        relative)."""
+        error = abs(measured - expected)
+        if relative:
+            error /= max(abs(expected), 1e-300)
+        ok = error <= tolerance
+        kind = "relative" if relative else "absolute"
+        print(f"  [{'PASS' if ok else 'FAIL'}] {name}: measured {measured:.6g}, "
+              f"expected {expected:.6g}, {kind} error {error:.3g} "
+              f"(tolerance {tolerance:.3g})")
+        self._count(ok)
+        return ok
+
+    def check_below(self, name, measured, limit):
+        ok = measured <= limit
+        print(f"  [{'PASS' if ok else 'FAIL'}] {name}: measured {measured:.6g} "
+              f"(limit {limit:.6g})")
+        self._count(ok)
+        return ok
+
+    def check_true(self, name, condition, detail=""):
+        print(f"  [{'PASS' if condition else 'FAIL'}] {name}{': ' + detail if detail else ''}")
+        self._count(condition)
+        return condition
+
+    def _count(self, ok):
+        if ok:
+            self.passed += 1
+        else:
+            self.failed += 1
+
+    def finish(self):
+        print(f"{self.passed} passed, {self.failed} failed")
+        sys.exit(1 if self.failed else 0)
+
+
+def arguments():
+    p = argparse.ArgumentParser()
+    p.add_argument("--anvil", required=True)
+    p.add_argument("--source-dir", required=True)
+    p.add_argument("--work-dir", required=True)
+    return p.parse_args()
+
+
+def run_anvil(anvil, prm, np=1, cwd=None, extra_args=()):
+    """Run anvil on prm with np MPI processes; return (exit code, stdout,
+    stderr)."""
+    cmd = [anvil, *extra_args, prm]
+    if np > 1:
+        cmd = ["mpirun", "-np", str(np), "--oversubscribe"] + cmd
+    r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+    return r.returncode, r.stdout, r.stderr
+
+
+def write_scene(path, include=None, text=""):
+    """Write a scene file; 'include' pulls in a real scene from prm/ whose
+    entries 'text' then overrides."""
+    with open(path, "w") as f:
+        if include:
+            f.write(f"include {include}\n")
+        f.write(text)
+    return path
+
+
+def read_csv(path):
+    """Columns of a CSV file as a dict of float lists."""
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0].keys()}
+
+
+def max_relative_difference(a, b):
+    """Largest difference of two column dicts, each column scaled by its
+    largest magnitude (at least 1e-6 of the file's largest: columns that
+    are pure round-off noise, like a transverse momentum of 1e-19, are
+    compared on the file's scale)."""
+    worst = 0.0
+    file_max = max(max(abs(x) for x in col) for col in a.values())
+    for k in a:
+        if k not in b or len(a[k]) != len(b[k]):
+            return float("inf")
+        scale = max(max(abs(x) for x in a[k]), max(abs(x) for x in b[k]),
+                    1e-6 * file_max, 1e-300)
+        for x, y in zip(a[k], b[k]):
+            worst = max(worst, abs(x - y) / scale)
+    return worst
