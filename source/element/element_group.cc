@@ -136,14 +136,15 @@ namespace anvil::Element
                               double      *s)
     {
       const double h    = 0.5 * dt;
-      double       A[3][3] = {{1., h * w01, h * w02},
-                              {-h * w01, 1., h * w12},
-                              {-h * w02, -h * w12, 1.}};
+      // W = [[0, w01, w02], [-w01, 0, w12], [-w02, -w12, 0]]
+      double       A[3][3] = {{1., -h * w01, -h * w02},
+                              {h * w01, 1., -h * w12},
+                              {h * w02, h * w12, 1.}}; // I - dt W / 2
       double       Ai[3][3];
       inv3(A, det3(A), Ai);
-      const double Bm[3][3] = {{1., -h * w01, -h * w02},
-                               {h * w01, 1., -h * w12},
-                               {h * w02, h * w12, 1.}};
+      const double Bm[3][3] = {{1., h * w01, h * w02},
+                               {-h * w01, 1., h * w12},
+                               {-h * w02, -h * w12, 1.}}; // I + dt W / 2
       double       Q[3][3];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
@@ -450,12 +451,16 @@ namespace anvil::Element
                 material.compute_pk2_stress(Fm, E, sig, hst);
                 if (dt > 0)
                   {
-                    // Seed Eq. (22c): rho_0 dw/dt = S : dE/dt,
-                    // dE/dt = sym(F^T dF/dt).
+                    // Seed Eq. (22c): rho_0 dw/dt = S : dE/dt with
+                    // dE/dt = sym(F^T dF/dt) on the mid-step F, which makes
+                    // dt dE/dt the exact increment of E over the step.
+                    double Fh[9];
+                    for (unsigned int k = 0; k < 9; ++k)
+                      Fh[k] = Fm[k] - 0.5 * dt * Fd[k];
                     auto Ed = [&](unsigned int i, unsigned int j) {
-                      return 0.5 * (Fm[i] * Fd[j] + Fm[3 + i] * Fd[3 + j] +
-                                    Fm[6 + i] * Fd[6 + j] + Fd[i] * Fm[j] +
-                                    Fd[3 + i] * Fm[3 + j] + Fd[6 + i] * Fm[6 + j]);
+                      return 0.5 * (Fh[i] * Fd[j] + Fh[3 + i] * Fd[3 + j] +
+                                    Fh[6 + i] * Fd[6 + j] + Fd[i] * Fh[j] +
+                                    Fd[3 + i] * Fh[3 + j] + Fd[6 + i] * Fh[6 + j]);
                     };
                     const double Edot[6] = {
                       Ed(0, 0), Ed(1, 1), Ed(2, 2), Ed(0, 1), Ed(1, 2), Ed(0, 2)};
