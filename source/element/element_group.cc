@@ -169,6 +169,29 @@ namespace anvil::Element
   } // namespace
 
 
+  void lumped_mass(const double (&X)[8][3], const double density, double (&mass)[8])
+  {
+    std::fill(mass, mass + 8, 0.);
+    const double g = 1. / std::sqrt(3.);
+    for (unsigned int q = 0; q < 8; ++q)
+      {
+        double J[3][3] = {};
+        for (unsigned int I = 0; I < 8; ++I)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              J[a][c] += X[I][a] * tables.dN[q][I][c];
+        const double jxw = det3(J);
+        for (unsigned int I = 0; I < 8; ++I)
+          {
+            double N = 0.125;
+            for (unsigned int a = 0; a < 3; ++a)
+              N *= 1. + sgn[I][a] * g * sgn[q][a];
+            mass[I] += density * N * jxw;
+          }
+      }
+  }
+
+
   ElementGroup::ElementGroup(const MaterialModel::Interface &material,
                              const Formulation               formulation,
                              const Integration               integration,
@@ -187,10 +210,12 @@ namespace anvil::Element
 
   void ElementGroup::add_element(const std::array<unsigned int, 8> &node,
                                  const double (&X)[8][3],
-                                 const unsigned int cell)
+                                 const unsigned int cell,
+                                 const bool         owned)
   {
     nodes.insert(nodes.end(), node.begin(), node.end());
     cell_index.push_back(cell);
+    energy_weight.push_back(owned ? 1. : 0.);
 
     // Reference Jacobians at the element's points; the volume by full
     // Gauss quadrature (exact for the trilinear map).
@@ -255,7 +280,7 @@ namespace anvil::Element
     return (nodes.capacity() * sizeof(unsigned int) +
             cell_index.capacity() * sizeof(unsigned int) +
             sizeof(double) *
-              (reference_volume.capacity() + jacobian_inverse_ref.capacity() +
+              (reference_volume.capacity() + energy_weight.capacity() + jacobian_inverse_ref.capacity() +
                jxw_ref.capacity() + stresses.capacity() + history.capacity() +
                hourglass_modes.capacity() + hourglass_resistance.capacity() +
                internal_energy.capacity() +
@@ -568,11 +593,11 @@ namespace anvil::Element
                 fe[n][a] -= r[a][0] * gam[0][n] + r[a][1] * gam[1][n] +
                             r[a][2] * gam[2][n] + r[a][3] * gam[3][n];
             hourglass_energy[e] += power * dt;
-            result.hourglass_energy_increment += power * dt;
+            result.hourglass_energy_increment += energy_weight[e] * power * dt;
           }
 
         internal_energy[e] += e_int;
-        result.internal_energy_increment += e_int;
+        result.internal_energy_increment += energy_weight[e] * e_int;
 
         // Stable time step of this element: L_e / c with the current
         // density rho_0 V_0 / V (seed Eq. (23)).

@@ -127,6 +127,7 @@ namespace anvil
     const double *x = position.begin();
     for (const auto &group : element_groups)
       for (unsigned int e = 0; e < group.n_elements(); ++e)
+        if (group.element_is_owned(e))
         {
           const unsigned int c = group.element_cell_index(e);
           double             s[6];

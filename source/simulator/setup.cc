@@ -140,8 +140,16 @@ namespace anvil
 
   // @sect3{Element groups}
   //
-  // One group per body with its locally owned cells. A node is addressed
-  // by the local index of its x dof in the nodal vectors; y and z follow.
+  // One group per body with its locally owned and ghost cells, in the
+  // order of their coarse-cell index (the same on every process). A node
+  // is addressed by the local index of its x dof in the nodal vectors; y
+  // and z follow.
+  //
+  // Why ghost cells: every process computes the forces of all elements
+  // around the nodes it owns and adds them in global element order. The
+  // nodal forces, and so the whole trajectory, are then bitwise the same on
+  // any number of processes, and no force exchange (compress) is needed;
+  // the price is the duplicated work on one layer of ghost cells.
   void Simulator::setup_element_groups()
   {
     element_groups.clear();
@@ -154,7 +162,7 @@ namespace anvil
                                   body.hourglass_coefficient);
     const auto &partitioner = position.get_partitioner();
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (!cell->is_artificial())
         {
           std::array<unsigned int, 8> node;
           double                      X[8][3];
@@ -170,7 +178,8 @@ namespace anvil
             }
           element_groups[cell->material_id()].add_element(node,
                                                           X,
-                                                          cell->active_cell_index());
+                                                          cell->active_cell_index(),
+                                                          cell->is_locally_owned());
         }
     for (auto &g : element_groups)
       g.finalize();
@@ -180,29 +189,29 @@ namespace anvil
   // @sect3{Lumped mass}
   //
   // Row-sum lumping of the consistent mass M = int rho_0 N^T N dV_0 (seed
-  // Eq. (35)): M_II = int rho_0 N_I dV_0. This is set-up work, so it uses
-  // the tutorial path with FEValues.
+  // Eq. (35)): M_II = int rho_0 N_I dV_0. Like the forces, owned and ghost
+  // cells are summed in global order on every process, so the masses are
+  // bitwise the same for any partition.
   void Simulator::assemble_lumped_mass()
   {
-    mass = 0;
-    const QGauss<3>                      quadrature(2);
-    FEValues<3>                          fe_values(fe, quadrature, update_values | update_JxW_values);
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    mass                  = 0;
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
     for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (!cell->is_artificial())
         {
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          const double rho = bodies[cell->material_id()].material->density();
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-            {
-              double m = 0;
-              for (unsigned int q = 0; q < quadrature.size(); ++q)
-                m += rho * fe_values.shape_value(i, q) * fe_values.JxW(q);
-              mass(dofs[i]) += m;
-            }
+          double X[8][3], m[8];
+          for (unsigned int v = 0; v < 8; ++v)
+            for (unsigned int d = 0; d < 3; ++d)
+              X[v][d] = cell->vertex(v)[d];
+          Element::lumped_mass(X, bodies[cell->material_id()].material->density(), m);
+          for (unsigned int v = 0; v < 8; ++v)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const auto dof = cell->vertex_dof_index(v, d);
+                if (owned.is_element(dof))
+                  mass(dof) += m[v];
+              }
         }
-    mass.compress(VectorOperation::add);
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
       AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
   }

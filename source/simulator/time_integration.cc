@@ -23,6 +23,15 @@ namespace anvil
 {
   using namespace dealii;
 
+  void Simulator::zero_forces()
+  {
+    std::fill(force.begin(),
+              force.begin() + force.locally_owned_size() +
+                force.get_partitioner()->n_ghost_indices(),
+              0.);
+  }
+
+
   // @sect3{Internal forces}
   double Simulator::compute_internal_forces(const double dt_previous)
   {
@@ -256,10 +265,9 @@ namespace anvil
     pcout << "  results in " << output_directory << "/" << std::endl;
 
     // Step 0: forces of the initial state (stress free), energy E_0.
-    force = 0;
+    zero_forces();
     critical_dt = compute_internal_forces(0.);
     apply_contact();
-    force.compress(VectorOperation::add);
 
     double kinetic0 = 0;
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
@@ -323,10 +331,9 @@ namespace anvil
         ++step_number;
         dt_previous = current_dt;
 
-        force = 0;
+        zero_forces();
         critical_dt = compute_internal_forces(dt_previous);
         apply_contact();
-        force.compress(VectorOperation::add);
 
         if (output_interval > 0 && time >= next_output - eps && time < end_time - eps)
           {

@@ -53,6 +53,15 @@ namespace anvil::Element
   std::string to_string(Integration i);
   std::string to_string(HourglassType h);
 
+  /**
+   * Row-sum lumped mass of one hexahedron, m_I = rho_0 int N_I dV_0 (seed
+   * Eq. (35)), by 2x2x2 Gauss quadrature (exact for the trilinear map).
+   * Computed from the element's own vertices only, so the result does not
+   * depend on which elements were evaluated before (unlike FEValues, which
+   * reuses Jacobians of a translated previous cell).
+   */
+  void lumped_mass(const double (&X)[8][3], double density, double (&mass)[8]);
+
   /** What one pass of the element loop reports. */
   struct LoopResult
   {
@@ -84,11 +93,15 @@ namespace anvil::Element
      * lexicographic order, the local index of its x component in the nodal
      * vectors (y and z follow at +1, +2). @p X are the reference vertex
      * coordinates. @p cell_index is a user tag (deal.II's active cell
-     * index) used by output.
+     * index) used by output. A ghost element (@p owned false) computes its
+     * forces like any other, so that every owned node receives the
+     * contributions of all its elements in the same order on any number of
+     * processes, but adds nothing to the energies.
      */
     void add_element(const std::array<unsigned int, 8> &node,
                      const double (&X)[8][3],
-                     unsigned int cell_index);
+                     unsigned int cell_index,
+                     bool         owned = true);
 
     /** Allocate stress and history storage once all elements are added. */
     void finalize();
@@ -115,6 +128,10 @@ namespace anvil::Element
     unsigned int element_cell_index(const unsigned int e) const
     {
       return cell_index[e];
+    }
+    bool element_is_owned(const unsigned int e) const
+    {
+      return energy_weight[e] != 0.;
     }
     const std::array<unsigned int, 8> element_nodes(const unsigned int e) const;
 
@@ -177,6 +194,8 @@ namespace anvil::Element
     std::vector<unsigned int> nodes;
     std::vector<unsigned int> cell_index;
     std::vector<double>       reference_volume;
+    /** 1 for owned elements, 0 for ghost elements. */
+    std::vector<double> energy_weight;
     /** Total Lagrangian: inverse reference Jacobian (9) per point. */
     std::vector<double> jacobian_inverse_ref;
     /** Weight times reference Jacobian determinant per point. */
