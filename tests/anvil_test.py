@@ -4,6 +4,7 @@ output, and report every check as 'measured / expected / tolerance'."""
 import argparse
 import csv
 import os
+import shutil
 import subprocess
 import sys
 
@@ -59,7 +60,12 @@ def arguments():
     p.add_argument("--anvil", required=True)
     p.add_argument("--source-dir", required=True)
     p.add_argument("--work-dir", required=True)
-    return p.parse_args()
+    a = p.parse_args()
+    # Start from a clean slate: anvil refuses to overwrite earlier results.
+    for root, dirs, files in os.walk(a.work_dir):
+        if os.path.basename(root) == "output":
+            shutil.rmtree(root, ignore_errors=True)
+    return a
 
 
 def run_anvil(anvil, prm, np=1, cwd=None, extra_args=()):

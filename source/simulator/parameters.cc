@@ -173,7 +173,11 @@ namespace anvil
         }
       catch (const dealii::ExceptionBase &e)
         {
-          throw InputError(parameter_file + ": " + one_line_message(e));
+          std::string msg = one_line_message(e);
+          if (msg.find("No entry with name") != std::string::npos ||
+              msg.find("no subsection") != std::string::npos)
+            msg += " ('anvil --print-parameters' lists every entry)";
+          throw InputError(parameter_file + ": " + msg);
         }
     };
 

@@ -230,6 +230,27 @@ namespace anvil
   // @sect3{The run}
   void Simulator::run()
   {
+    try
+      {
+        run_scene();
+      }
+    catch (...)
+      {
+        // Every rank arrives here together (input errors and numerical
+        // failures follow from replicated data or global reductions); the
+        // timing summary of a failed run is of no use.
+        if (timer)
+          {
+            timer->disable_output();
+            timer.reset();
+          }
+        throw;
+      }
+  }
+
+
+  void Simulator::run_scene()
+  {
     timer = std::make_unique<TimerOutput>(mpi_communicator,
                                           pcout,
                                           print_wall_times ? TimerOutput::summary :

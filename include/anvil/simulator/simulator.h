@@ -98,6 +98,7 @@ namespace anvil
     void prepare_output_directory();
 
     // The explicit step (source/simulator/time_integration.cc)
+    void   run_scene();
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     void   apply_contact();

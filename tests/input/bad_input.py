@@ -1,0 +1,101 @@
+"""Bad input gets one clear error line and a non-zero exit, never a crash or
+a hang, and results of an earlier run are not overwritten silently.
+
+Each case is a small scene with one mistake; the check is the exit status
+(2 for input, 3 for a numerical failure during the run), a single line
+starting 'anvil: error:' that names the file and the offending entry, and
+for the inverted element the time, step, element and position.
+"""
+import os
+from anvil_test import Checker, arguments, run_anvil, write_scene
+
+args = arguments()
+c = Checker("bad input")
+block = """
+set Bodies = block
+subsection Simulation
+  set End time = 0.5
+  set Print wall times = false
+end
+subsection Body block
+  subsection Mesh
+    set Upper corner = 1, 1, 1
+    set Subdivisions = 2, 2, 2
+{mesh}
+  end
+  subsection Material
+    subsection elastic
+      set Density = 0.01
+      set Young's modulus = 100
+      set Poisson's ratio = {nu}
+    end
+  end
+{extra}
+end
+"""
+cases = [
+    ("unknown_entry", dict(mesh="", nu="0.3", extra="  set Youngs modulus = 5"), 2,
+     ["unknown_entry.prm", "Youngs modulus", "--print-parameters"]),
+    ("out_of_range", dict(mesh="", nu="0.7", extra=""), 2,
+     ["out_of_range.prm", "Poisson's ratio", "0.7", "-1...0.5"]),
+    ("missing_mesh", dict(mesh="    set Source = file\n    set File name = no_such_mesh.msh", nu="0.3", extra=""), 2,
+     ["missing_mesh.prm", "no_such_mesh.msh", "cannot be opened"]),
+]
+for name, fields, status, words in cases:
+    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=block.format(**fields))
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+    lines = [l for l in err.splitlines() if l.strip()]
+    print(f"    {name}: {lines[-1] if lines else '(no message)'}")
+    c.check_true(f"{name}: exit status {status}", code == status, f"got {code}")
+    c.check_true(f"{name}: exactly one error line naming {words}",
+                 len(lines) == 1 and lines[0].startswith("anvil: error:") and all(w in lines[0] for w in words))
+
+# Unknown body named by a boundary condition.
+prm = write_scene(os.path.join(args.work_dir, "unknown_body.prm"),
+                  text=block.format(mesh="", nu="0.3", extra="") +
+                  "set Boundary conditions = wall\nsubsection Boundary condition wall\n  set Body = blok\nend\n")
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+lines = [l for l in err.splitlines() if l.strip()]
+print(f"    unknown_body: {lines[-1] if lines else ''}")
+c.check_true("unknown body: exit 2 with one line naming it", code == 2 and len(lines) == 1 and "blok" in lines[0])
+
+# Inverted element during the run: one face driven into the block at 60 m/s
+# (half the wave speed), for long enough to turn elements inside out.
+prm = write_scene(os.path.join(args.work_dir, "inverted.prm"),
+                  text=block.format(mesh="", nu="0.3", extra="") + """
+set Boundary conditions = fixed, ram
+subsection Boundary condition fixed
+  set Body = block
+  set Boundary ids = 0
+end
+subsection Boundary condition ram
+  set Body = block
+  set Boundary ids = 1
+  set Type = velocity
+  set Velocity = -60, 0, 0
+end
+subsection Simulation
+  set Energy balance tolerance = 1000
+end
+""")
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+lines = [l for l in err.splitlines() if l.strip()]
+print(f"    inverted: {lines[-1] if lines else ''}")
+c.check_true("inverted element: exit status 3", code == 3, f"got {code}")
+c.check_true("inverted element: one line naming time, step, element, position",
+             len(lines) == 1 and all(w in lines[0] for w in ("inverted", "t =", "step", "element", "near (")))
+
+# Results of an earlier run are kept.
+ok_scene = block.format(mesh="", nu="0.3", extra="")
+prm = write_scene(os.path.join(args.work_dir, "twice.prm"), text=ok_scene)
+code1, _, err1 = run_anvil(args.anvil, prm, cwd=args.work_dir)
+energy = os.path.join(args.work_dir, "output/twice/energy.csv")
+before = open(energy).read() if os.path.exists(energy) else None
+code2, _, err2 = run_anvil(args.anvil, prm, cwd=args.work_dir)
+lines = [l for l in err2.splitlines() if l.strip()]
+print(f"    second run: {lines[-1] if lines else ''}")
+c.check_true("first run succeeds", code1 == 0, err1.strip())
+c.check_true("second run into the same directory: exit 2, one line naming the setting",
+             code2 == 2 and len(lines) == 1 and "Overwrite existing output" in lines[0])
+c.check_true("earlier results unchanged", before is not None and open(energy).read() == before)
+c.finish()
