@@ -45,6 +45,10 @@ namespace anvil::Element
                                   {-1, 1, 1},
                                   {1, 1, 1}};
 
+    constexpr double gauss = 0.57735026918962576451; // 1/sqrt(3)
+
+    /** Compile-time shape-function tables, so that the element loop's
+        multiplications by +-1/8 and +-1 fold into additions. */
     struct Tables
     {
       double dN[9][8][3];
@@ -52,14 +56,16 @@ namespace anvil::Element
       /** Hourglass base vectors Gamma_j (seed Eq. (42)), lexicographic. */
       double Gamma[4][8];
 
-      Tables()
+      constexpr Tables()
+        : dN()
+        , weight()
+        , Gamma()
       {
-        const double g = 1. / std::sqrt(3.);
         for (unsigned int q = 0; q < 9; ++q)
           {
-            double p[3];
+            double p[3] = {0, 0, 0};
             for (unsigned int a = 0; a < 3; ++a)
-              p[a] = (q < 8 ? g * sgn[q][a] : 0.);
+              p[a] = (q < 8 ? gauss * sgn[q][a] : 0.);
             weight[q] = (q < 8 ? 1. : 8.);
             for (unsigned int I = 0; I < 8; ++I)
               for (unsigned int a = 0; a < 3; ++a)
@@ -81,7 +87,7 @@ namespace anvil::Element
       }
     };
 
-    const Tables tables;
+    constexpr Tables tables;
 
     // @sect3{Small 3x3 helpers}
     inline double det3(const double (&A)[3][3])
@@ -135,27 +141,25 @@ namespace anvil::Element
                               const double dt,
                               double      *s)
     {
-      const double h    = 0.5 * dt;
-      // W = [[0, w01, w02], [-w01, 0, w12], [-w02, -w12, 0]]
-      double       A[3][3] = {{1., -h * w01, -h * w02},
-                              {h * w01, 1., -h * w12},
-                              {h * w02, h * w12, 1.}}; // I - dt W / 2
-      double       Ai[3][3];
-      inv3(A, det3(A), Ai);
-      const double Bm[3][3] = {{1., h * w01, h * w02},
-                               {-h * w01, 1., h * w12},
-                               {-h * w02, -h * w12, 1.}}; // I + dt W / 2
+      // With K = dt W / 2 and its axial vector k (K x = k x x),
+      // (I - K)^{-1} = I + (K + K^2) / (1 + k.k) since K^3 = -(k.k) K, so
+      // Q = (I - K)^{-1} (I + K) = I + 2 (K + K^2) / (1 + k.k): exactly
+      // orthogonal, with no matrix inverse.
+      const double h  = 0.5 * dt;
+      const double k0 = -h * w12, k1 = h * w02, k2 = -h * w01; // axial vector
+      const double K[3][3] = {{0., -k2, k1}, {k2, 0., -k0}, {-k1, k0, 0.}};
+      const double kk = k0 * k0 + k1 * k1 + k2 * k2;
+      const double c  = 2. / (1. + kk);
+      const double kv[3] = {k0, k1, k2};
       double       Q[3][3];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
-          Q[i][j] = Ai[i][0] * Bm[0][j] + Ai[i][1] * Bm[1][j] +
-                    Ai[i][2] * Bm[2][j];
+          Q[i][j] = (i == j) + c * (K[i][j] + kv[i] * kv[j] - (i == j) * kk);
       double S[3][3], T[3][3];
       voigt_to_matrix(s, S);
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = 0; j < 3; ++j)
           T[i][j] = Q[i][0] * S[0][j] + Q[i][1] * S[1][j] + Q[i][2] * S[2][j];
-      // R = T Q^T, only the symmetric part is stored.
       auto r = [&](unsigned int i, unsigned int j) {
         return T[i][0] * Q[j][0] + T[i][1] * Q[j][1] + T[i][2] * Q[j][2];
       };
@@ -172,7 +176,7 @@ namespace anvil::Element
   void lumped_mass(const double (&X)[8][3], const double density, double (&mass)[8])
   {
     std::fill(mass, mass + 8, 0.);
-    const double g = 1. / std::sqrt(3.);
+    const double g = gauss;
     for (unsigned int q = 0; q < 8; ++q)
       {
         double J[3][3] = {};
@@ -294,38 +298,53 @@ namespace anvil::Element
                                                    const double  dt,
                                                    double       *force)
   {
-    // Dispatch once per group to a loop specialised at compile time.
-    const bool ul = (formulation == Formulation::updated_lagrangian);
+    // Dispatch once per group to a loop specialised at compile time. The
+    // one-point updated Lagrangian path, the workhorse of impact analysis,
+    // runs batched; the others element by element.
+    const unsigned int n = n_elements();
+    const bool         ul = (formulation == Formulation::updated_lagrangian);
     if (integration == Integration::full)
-      return ul ? loop<Formulation::updated_lagrangian,
-                       Integration::full,
-                       HourglassType::none>(x, v, dt, force) :
-                  loop<Formulation::total_lagrangian,
-                       Integration::full,
-                       HourglassType::none>(x, v, dt, force);
+      return ul ? loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
+                    x, v, dt, force, 0, n) :
+                  loop<Formulation::total_lagrangian, Integration::full, HourglassType::none>(
+                    x, v, dt, force, 0, n);
     switch (hourglass)
       {
         case HourglassType::viscous:
-          return ul ? loop<Formulation::updated_lagrangian,
-                           Integration::one_point,
-                           HourglassType::viscous>(x, v, dt, force) :
-                      loop<Formulation::total_lagrangian,
-                           Integration::one_point,
-                           HourglassType::viscous>(x, v, dt, force);
+          return ul ? batched_loop<HourglassType::viscous>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::viscous>(
+                        x, v, dt, force, 0, n);
         case HourglassType::stiffness:
-          return ul ? loop<Formulation::updated_lagrangian,
-                           Integration::one_point,
-                           HourglassType::stiffness>(x, v, dt, force) :
-                      loop<Formulation::total_lagrangian,
-                           Integration::one_point,
-                           HourglassType::stiffness>(x, v, dt, force);
+          return ul ? batched_loop<HourglassType::stiffness>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::stiffness>(
+                        x, v, dt, force, 0, n);
         default:
-          return ul ? loop<Formulation::updated_lagrangian,
-                           Integration::one_point,
-                           HourglassType::none>(x, v, dt, force) :
-                      loop<Formulation::total_lagrangian,
-                           Integration::one_point,
-                           HourglassType::none>(x, v, dt, force);
+          return ul ? batched_loop<HourglassType::none>(x, v, dt, force) :
+                      loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::none>(
+                        x, v, dt, force, 0, n);
+      }
+  }
+
+
+  LoopResult ElementGroup::compute_internal_forces_reference(const double *x,
+                                                             const double *v,
+                                                             const double  dt,
+                                                             double       *force)
+  {
+    const unsigned int n = n_elements();
+    if (formulation != Formulation::updated_lagrangian || integration != Integration::one_point)
+      return compute_internal_forces(x, v, dt, force);
+    switch (hourglass)
+      {
+        case HourglassType::viscous:
+          return loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::viscous>(
+            x, v, dt, force, 0, n);
+        case HourglassType::stiffness:
+          return loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::stiffness>(
+            x, v, dt, force, 0, n);
+        default:
+          return loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::none>(
+            x, v, dt, force, 0, n);
       }
   }
 
@@ -343,10 +362,12 @@ namespace anvil::Element
   // Eq. (7), S from the material, and f = int B_0^T (F S) dV_0 (seed
   // Eq. (37)).
   template <Formulation F, Integration I, HourglassType H>
-  LoopResult ElementGroup::loop(const double *x,
-                                const double *v,
-                                const double  dt,
-                                double       *force)
+  LoopResult ElementGroup::loop(const double      *x,
+                                const double      *v,
+                                const double       dt,
+                                double            *force,
+                                const unsigned int begin,
+                                const unsigned int end)
   {
     constexpr unsigned int nq  = (I == Integration::one_point ? 1 : 8);
     constexpr unsigned int q0  = (I == Integration::one_point ? 8 : 0);
@@ -355,8 +376,7 @@ namespace anvil::Element
     LoopResult             result;
     double                 min_dt2 = 1e300;
 
-    const unsigned int n_el = n_elements();
-    for (unsigned int e = 0; e < n_el; ++e)
+    for (unsigned int e = begin; e < end; ++e)
       {
         const unsigned int *en = &nodes[8 * e];
         double              xe[8][3], ve[8][3], fe[8][3] = {};
@@ -369,7 +389,8 @@ namespace anvil::Element
 
         double e_int    = 0;
         double volume   = 0;
-        double Jinv_c[3][3]; // inverse Jacobian used by hourglass control
+        double Jinv_c[3][3]; // centroid inverse Jacobian, for hourglass control
+        double Jd_c[3][3];   // centroid velocity Jacobian, for hourglass control
         double max_grad2 = 0;
 
         for (unsigned int qq = 0; qq < nq; ++qq)
@@ -514,7 +535,10 @@ namespace anvil::Element
                                    G[a][2] * dN[n][2]);
 
             if constexpr (I == Integration::one_point)
-              std::copy(&Ji[0][0], &Ji[0][0] + 9, &Jinv_c[0][0]);
+              {
+                std::copy(&Ji[0][0], &Ji[0][0] + 9, &Jinv_c[0][0]);
+                std::copy(&Jd[0][0], &Jd[0][0] + 9, &Jd_c[0][0]);
+              }
           }
 
         if (result.inverted_element == long(e))
@@ -528,32 +552,29 @@ namespace anvil::Element
         // viscous force is seed Eq. (44) with alpha = Q rho V^(2/3) c / 4.
         if constexpr (H != HourglassType::none)
           {
+            // With g_ja = Gamma_jK x_Ka and t_jc = g_ja dxi_c/dx_a, the
+            // vectors are gamma_jI = Gamma_jI - t_jc dN_I/dxi_c, so
+            //   h_aj = v_Ia Gamma_jI - t_jc (dv_a/dxi_c)   (Jd at the centroid)
+            //   f_Ia = -r_aj Gamma_jI + (r_aj t_jc) dN_I/dxi_c,
+            // which never forms gamma explicitly.
             const auto &dN = tables.dN[8];
-            double      gam[4][8];
+            double      t[4][3], h[3][4];
             for (unsigned int j = 0; j < 4; ++j)
               {
-                double g[3] = {};
+                double g[3] = {}, vg[3] = {};
                 for (unsigned int n = 0; n < 8; ++n)
                   for (unsigned int a = 0; a < 3; ++a)
-                    g[a] += tables.Gamma[j][n] * xe[n][a];
-                double t[3];
+                    {
+                      g[a] += tables.Gamma[j][n] * xe[n][a];
+                      vg[a] += tables.Gamma[j][n] * ve[n][a];
+                    }
                 for (unsigned int c = 0; c < 3; ++c)
-                  t[c] = g[0] * Jinv_c[c][0] + g[1] * Jinv_c[c][1] +
-                         g[2] * Jinv_c[c][2];
-                for (unsigned int n = 0; n < 8; ++n)
-                  gam[j][n] = tables.Gamma[j][n] - (t[0] * dN[n][0] +
-                                                    t[1] * dN[n][1] +
-                                                    t[2] * dN[n][2]);
+                  t[j][c] = g[0] * Jinv_c[c][0] + g[1] * Jinv_c[c][1] +
+                            g[2] * Jinv_c[c][2];
+                for (unsigned int a = 0; a < 3; ++a)
+                  h[a][j] = vg[a] - (t[j][0] * Jd_c[a][0] + t[j][1] * Jd_c[a][1] +
+                                     t[j][2] * Jd_c[a][2]);
               }
-            double h[3][4];
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int j = 0; j < 4; ++j)
-                {
-                  double s = 0;
-                  for (unsigned int n = 0; n < 8; ++n)
-                    s += ve[n][a] * gam[j][n];
-                  h[a][j] = s;
-                }
             const double rho = rho0 * reference_volume[e] / volume;
             double       k;
             double       r[3][4];
@@ -588,10 +609,16 @@ namespace anvil::Element
                   power += 0.5 * (r_old[4 * a + j] + r[a][j]) * h[a][j];
                   r_old[4 * a + j] = r[a][j];
                 }
+            double u[3][3];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                u[a][c] = r[a][0] * t[0][c] + r[a][1] * t[1][c] + r[a][2] * t[2][c] +
+                          r[a][3] * t[3][c];
             for (unsigned int n = 0; n < 8; ++n)
               for (unsigned int a = 0; a < 3; ++a)
-                fe[n][a] -= r[a][0] * gam[0][n] + r[a][1] * gam[1][n] +
-                            r[a][2] * gam[2][n] + r[a][3] * gam[3][n];
+                fe[n][a] += u[a][0] * dN[n][0] + u[a][1] * dN[n][1] + u[a][2] * dN[n][2] -
+                            (r[a][0] * tables.Gamma[0][n] + r[a][1] * tables.Gamma[1][n] +
+                             r[a][2] * tables.Gamma[2][n] + r[a][3] * tables.Gamma[3][n]);
             hourglass_energy[e] += power * dt;
             result.hourglass_energy_increment += energy_weight[e] * power * dt;
           }
@@ -607,6 +634,306 @@ namespace anvil::Element
         for (unsigned int n = 0; n < 8; ++n)
           for (unsigned int a = 0; a < 3; ++a)
             force[en[n] + a] += fe[n][a];
+      }
+    result.critical_time_step = std::sqrt(min_dt2);
+    return result;
+  }
+
+
+  // @sect3{The batched one-point loop}
+  //
+  // The same mathematics as loop<updated_lagrangian, one_point, H> (the
+  // reference; tests/unit compare the two), written for W = 8 elements at
+  // a time with every quantity an array over the batch, so that each
+  // statement becomes one SIMD operation. The last batch is padded by
+  // repeating its last element in lanes that are never written back. Every
+  // element goes through the same instructions whatever its lane, so the
+  // results do not depend on how elements fall into batches (nor on the
+  // partition).
+  template <HourglassType H>
+  LoopResult ElementGroup::batched_loop(const double *x,
+                                        const double *v,
+                                        const double  dt,
+                                        double       *force)
+  {
+    constexpr unsigned int W    = MaterialModel::Interface::batch_size;
+    const double           rho0 = material.density();
+    const double           M    = material.wave_modulus();
+    const auto            &dN   = tables.dN[8];
+    LoopResult             result;
+    double                 min_dt2 = 1e300;
+    const unsigned int     n_el    = n_elements();
+
+    for (unsigned int e0 = 0; e0 < n_el; e0 += W)
+      {
+        const unsigned int n_valid = std::min(W, n_el - e0);
+        unsigned int       el[W];
+        for (unsigned int l = 0; l < W; ++l)
+          el[l] = e0 + std::min(l, n_valid - 1);
+
+        alignas(64) double xe[8][3][W], ve[8][3][W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            const unsigned int *en = &nodes[8 * el[l]];
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int a = 0; a < 3; ++a)
+                {
+                  xe[n][a][l] = x[en[n] + a];
+                  ve[n][a][l] = v[en[n] + a];
+                }
+          }
+
+        // Jacobians of position and velocity at the centroid.
+        alignas(64) double Jn[3][3][W], Jd[3][3][W];
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int c = 0; c < 3; ++c)
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double sx = 0, sv = 0;
+                for (unsigned int n = 0; n < 8; ++n)
+                  {
+                    sx += xe[n][a][l] * dN[n][c];
+                    sv += ve[n][a][l] * dN[n][c];
+                  }
+                Jn[a][c][l] = sx;
+                Jd[a][c][l] = sv;
+              }
+        alignas(64) double detn[W];
+        bool               inverted = false;
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            detn[l] = Jn[0][0][l] * (Jn[1][1][l] * Jn[2][2][l] - Jn[1][2][l] * Jn[2][1][l]) -
+                      Jn[0][1][l] * (Jn[1][0][l] * Jn[2][2][l] - Jn[1][2][l] * Jn[2][0][l]) +
+                      Jn[0][2][l] * (Jn[1][0][l] * Jn[2][1][l] - Jn[1][1][l] * Jn[2][0][l]);
+            inverted |= !(detn[l] > 0);
+          }
+        if (inverted)
+          {
+            // Let the reference loop find and report the element.
+            const LoopResult r = loop<Formulation::updated_lagrangian, Integration::one_point, H>(
+              x, v, dt, force, e0, e0 + n_valid);
+            min_dt2 = std::min(min_dt2, r.critical_time_step * r.critical_time_step);
+            result.internal_energy_increment += r.internal_energy_increment;
+            result.hourglass_energy_increment += r.hourglass_energy_increment;
+            if (result.inverted_element < 0)
+              result.inverted_element = r.inverted_element;
+            continue;
+          }
+
+        auto inverse = [](const double (&A)[3][3][W], const double *det, double (&B)[3][3][W]) {
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double r = 1. / det[l];
+              B[0][0][l] = r * (A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l]);
+              B[0][1][l] = r * (A[0][2][l] * A[2][1][l] - A[0][1][l] * A[2][2][l]);
+              B[0][2][l] = r * (A[0][1][l] * A[1][2][l] - A[0][2][l] * A[1][1][l]);
+              B[1][0][l] = r * (A[1][2][l] * A[2][0][l] - A[1][0][l] * A[2][2][l]);
+              B[1][1][l] = r * (A[0][0][l] * A[2][2][l] - A[0][2][l] * A[2][0][l]);
+              B[1][2][l] = r * (A[0][2][l] * A[1][0][l] - A[0][0][l] * A[1][2][l]);
+              B[2][0][l] = r * (A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l]);
+              B[2][1][l] = r * (A[0][1][l] * A[2][0][l] - A[0][0][l] * A[2][1][l]);
+              B[2][2][l] = r * (A[0][0][l] * A[1][1][l] - A[0][1][l] * A[1][0][l]);
+            }
+        };
+        alignas(64) double Ji[3][3][W];
+        inverse(Jn, detn, Ji);
+
+        alignas(64) double sig[6][W], old[6][W];
+        for (unsigned int l = 0; l < W; ++l)
+          for (unsigned int k = 0; k < 6; ++k)
+            old[k][l] = sig[k][l] = stresses[6 * el[l] + k];
+        alignas(64) double e_int[W] = {};
+
+        if (dt > 0)
+          {
+            // Velocity gradient on the mid-step configuration.
+            alignas(64) double Jm[3][3][W], Jmi[3][3][W], detm[W], L[3][3][W];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                for (unsigned int l = 0; l < W; ++l)
+                  Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
+            for (unsigned int l = 0; l < W; ++l)
+              detm[l] = Jm[0][0][l] * (Jm[1][1][l] * Jm[2][2][l] - Jm[1][2][l] * Jm[2][1][l]) -
+                        Jm[0][1][l] * (Jm[1][0][l] * Jm[2][2][l] - Jm[1][2][l] * Jm[2][0][l]) +
+                        Jm[0][2][l] * (Jm[1][0][l] * Jm[2][1][l] - Jm[1][1][l] * Jm[2][0][l]);
+            inverse(Jm, detm, Jmi);
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                for (unsigned int l = 0; l < W; ++l)
+                  L[a][b][l] = Jd[a][0][l] * Jmi[0][b][l] + Jd[a][1][l] * Jmi[1][b][l] +
+                               Jd[a][2][l] * Jmi[2][b][l];
+            alignas(64) double D[6][W];
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                D[0][l] = L[0][0][l];
+                D[1][l] = L[1][1][l];
+                D[2][l] = L[2][2][l];
+                D[3][l] = 0.5 * (L[0][1][l] + L[1][0][l]);
+                D[4][l] = 0.5 * (L[1][2][l] + L[2][1][l]);
+                D[5][l] = 0.5 * (L[0][2][l] + L[2][0][l]);
+              }
+            // Hughes-Winget rotation, as rotate_stress() but across lanes.
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                const double h   = 0.25 * dt;
+                const double k0  = -h * (L[1][2][l] - L[2][1][l]);
+                const double k1  = h * (L[0][2][l] - L[2][0][l]);
+                const double k2  = -h * (L[0][1][l] - L[1][0][l]);
+                const double kk  = k0 * k0 + k1 * k1 + k2 * k2;
+                const double cf  = 2. / (1. + kk);
+                const double Q00 = 1. + cf * (k0 * k0 - kk), Q11 = 1. + cf * (k1 * k1 - kk),
+                             Q22 = 1. + cf * (k2 * k2 - kk);
+                const double Q01 = cf * (-k2 + k0 * k1), Q10 = cf * (k2 + k0 * k1);
+                const double Q02 = cf * (k1 + k0 * k2), Q20 = cf * (-k1 + k0 * k2);
+                const double Q12 = cf * (-k0 + k1 * k2), Q21 = cf * (k0 + k1 * k2);
+                const double S00 = sig[0][l], S11 = sig[1][l], S22 = sig[2][l], S01 = sig[3][l],
+                             S12 = sig[4][l], S02 = sig[5][l];
+                // T = Q S
+                const double T00 = Q00 * S00 + Q01 * S01 + Q02 * S02;
+                const double T01 = Q00 * S01 + Q01 * S11 + Q02 * S12;
+                const double T02 = Q00 * S02 + Q01 * S12 + Q02 * S22;
+                const double T10 = Q10 * S00 + Q11 * S01 + Q12 * S02;
+                const double T11 = Q10 * S01 + Q11 * S11 + Q12 * S12;
+                const double T12 = Q10 * S02 + Q11 * S12 + Q12 * S22;
+                const double T20 = Q20 * S00 + Q21 * S01 + Q22 * S02;
+                const double T21 = Q20 * S01 + Q21 * S11 + Q22 * S12;
+                const double T22 = Q20 * S02 + Q21 * S12 + Q22 * S22;
+                // sigma = T Q^T
+                sig[0][l] = T00 * Q00 + T01 * Q01 + T02 * Q02;
+                sig[1][l] = T10 * Q10 + T11 * Q11 + T12 * Q12;
+                sig[2][l] = T20 * Q20 + T21 * Q21 + T22 * Q22;
+                sig[3][l] = T00 * Q10 + T01 * Q11 + T02 * Q12;
+                sig[4][l] = T10 * Q20 + T11 * Q21 + T12 * Q22;
+                sig[5][l] = T00 * Q20 + T01 * Q21 + T02 * Q22;
+              }
+            double *hist[W];
+            for (unsigned int l = 0; l < W; ++l)
+              hist[l] = n_hist ? &history[n_hist * el[l]] : nullptr;
+            material.update_cauchy_stress_batch(D, dt, sig, hist);
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double p = 0;
+                for (unsigned int k = 0; k < 3; ++k)
+                  p += 0.5 * (old[k][l] + sig[k][l]) * D[k][l];
+                for (unsigned int k = 3; k < 6; ++k)
+                  p += (old[k][l] + sig[k][l]) * D[k][l];
+                e_int[l] = p * dt * 8. * detn[l];
+              }
+          }
+
+        // Internal force f_Ia -= V sigma_ab dxi_c/dx_b dN_I/dxi_c, together
+        // with the hourglass force below.
+        alignas(64) double G[3][3][W];
+        for (unsigned int c = 0; c < 3; ++c)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double V = 8. * detn[l];
+              G[0][c][l] = -V * (sig[0][l] * Ji[c][0][l] + sig[3][l] * Ji[c][1][l] + sig[5][l] * Ji[c][2][l]);
+              G[1][c][l] = -V * (sig[3][l] * Ji[c][0][l] + sig[1][l] * Ji[c][1][l] + sig[4][l] * Ji[c][2][l]);
+              G[2][c][l] = -V * (sig[5][l] * Ji[c][0][l] + sig[4][l] * Ji[c][1][l] + sig[2][l] * Ji[c][2][l]);
+            }
+        alignas(64) double r[3][4][W] = {};
+        alignas(64) double e_hg[W]    = {};
+        if constexpr (H != HourglassType::none)
+          {
+            alignas(64) double t[4][3][W], h[3][4][W];
+            for (unsigned int j = 0; j < 4; ++j)
+              for (unsigned int l = 0; l < W; ++l)
+                {
+                  double g[3] = {0, 0, 0}, vg[3] = {0, 0, 0};
+                  for (unsigned int n = 0; n < 8; ++n)
+                    for (unsigned int a = 0; a < 3; ++a)
+                      {
+                        g[a] += tables.Gamma[j][n] * xe[n][a][l];
+                        vg[a] += tables.Gamma[j][n] * ve[n][a][l];
+                      }
+                  for (unsigned int c = 0; c < 3; ++c)
+                    t[j][c][l] = g[0] * Ji[c][0][l] + g[1] * Ji[c][1][l] + g[2] * Ji[c][2][l];
+                  for (unsigned int a = 0; a < 3; ++a)
+                    h[a][j][l] = vg[a] - (t[j][0][l] * Jd[a][0][l] + t[j][1][l] * Jd[a][1][l] +
+                                          t[j][2][l] * Jd[a][2][l]);
+                }
+            alignas(64) double k[W];
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                const double volume = 8. * detn[l];
+                const double rho    = rho0 * reference_volume[el[l]] / volume;
+                if constexpr (H == HourglassType::viscous)
+                  k[l] = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
+                else
+                  k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume);
+              }
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int j = 0; j < 4; ++j)
+                for (unsigned int l = 0; l < W; ++l)
+                  {
+                    if constexpr (H == HourglassType::viscous)
+                      r[a][j][l] = k[l] * h[a][j][l];
+                    else
+                      {
+                        const double q = hourglass_modes[12 * el[l] + 4 * a + j] + dt * h[a][j][l];
+                        r[a][j][l]     = k[l] * q;
+                      }
+                    const double r_old = hourglass_resistance[12 * el[l] + 4 * a + j];
+                    e_hg[l] += 0.5 * (r_old + r[a][j][l]) * h[a][j][l] * dt;
+                  }
+            // The hourglass part of G: + r_aj t_jc.
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                for (unsigned int l = 0; l < W; ++l)
+                  G[a][c][l] += r[a][0][l] * t[0][c][l] + r[a][1][l] * t[1][c][l] +
+                                r[a][2][l] * t[2][c][l] + r[a][3][l] * t[3][c][l];
+            // Write back the hourglass state of the valid lanes.
+            for (unsigned int l = 0; l < n_valid; ++l)
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int j = 0; j < 4; ++j)
+                  {
+                    if constexpr (H == HourglassType::stiffness)
+                      hourglass_modes[12 * el[l] + 4 * a + j] += dt * h[a][j][l];
+                    hourglass_resistance[12 * el[l] + 4 * a + j] = r[a][j][l];
+                  }
+          }
+
+        alignas(64) double fe[8][3][W];
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double f = G[a][0][l] * dN[n][0] + G[a][1][l] * dN[n][1] + G[a][2][l] * dN[n][2];
+                if constexpr (H != HourglassType::none)
+                  f -= r[a][0][l] * tables.Gamma[0][n] + r[a][1][l] * tables.Gamma[1][n] +
+                       r[a][2][l] * tables.Gamma[2][n] + r[a][3][l] * tables.Gamma[3][n];
+                fe[n][a][l] = f;
+              }
+
+        // Stable time step per lane: L_e = 2 / max_c |grad xi_c|.
+        alignas(64) double dt2[W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            double g2 = 0;
+            for (unsigned int c = 0; c < 3; ++c)
+              g2 = std::max(g2, Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
+                                  Ji[c][2][l] * Ji[c][2][l]);
+            const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
+            dt2[l]             = 4. / g2 * rho_c / M;
+          }
+
+        // Write back and scatter the valid lanes, in element order.
+        for (unsigned int l = 0; l < n_valid; ++l)
+          {
+            const unsigned int e = el[l];
+            for (unsigned int k = 0; k < 6; ++k)
+              stresses[6 * e + k] = sig[k][l];
+            internal_energy[e] += e_int[l];
+            hourglass_energy[e] += e_hg[l];
+            result.internal_energy_increment += energy_weight[e] * e_int[l];
+            result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
+            min_dt2 = std::min(min_dt2, dt2[l]);
+            const unsigned int *en = &nodes[8 * e];
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int a = 0; a < 3; ++a)
+                force[en[n] + a] += fe[n][a][l];
+          }
       }
     result.critical_time_step = std::sqrt(min_dt2);
     return result;

@@ -64,6 +64,24 @@ namespace anvil::MaterialModel
   }
 
 
+  void Elastic::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                           const double dt,
+                                           double (&stress)[6][batch_size],
+                                           double *const (&)[batch_size]) const
+  {
+    for (unsigned int l = 0; l < batch_size; ++l)
+      {
+        const double ltr = lambda * dt * (D[0][l] + D[1][l] + D[2][l]);
+        stress[0][l] += ltr + 2. * mu * dt * D[0][l];
+        stress[1][l] += ltr + 2. * mu * dt * D[1][l];
+        stress[2][l] += ltr + 2. * mu * dt * D[2][l];
+        stress[3][l] += 2. * mu * dt * D[3][l];
+        stress[4][l] += 2. * mu * dt * D[4][l];
+        stress[5][l] += 2. * mu * dt * D[5][l];
+      }
+  }
+
+
   void Elastic::compute_pk2_stress(const double *,
                                    const double *E,
                                    double       *S,

@@ -20,6 +20,26 @@ namespace anvil
     }
 
 
+    void Interface::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                               const double dt,
+                                               double (&stress)[6][batch_size],
+                                               double *const (&history)[batch_size]) const
+    {
+      for (unsigned int l = 0; l < batch_size; ++l)
+        {
+          double d[6], s[6];
+          for (unsigned int k = 0; k < 6; ++k)
+            {
+              d[k] = D[k][l];
+              s[k] = stress[k][l];
+            }
+          update_cauchy_stress(d, dt, s, history[l]);
+          for (unsigned int k = 0; k < 6; ++k)
+            stress[k][l] = s[k];
+        }
+    }
+
+
     void Interface::compute_pk2_stress(const double *,
                                        const double *,
                                        double *,

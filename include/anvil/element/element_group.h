@@ -117,6 +117,15 @@ namespace anvil::Element
                                        double        dt,
                                        double       *force);
 
+    /**
+     * The same as compute_internal_forces(), always through the reference
+     * element-by-element loop (for tests of the fast path).
+     */
+    LoopResult compute_internal_forces_reference(const double *x,
+                                                 const double *v,
+                                                 double        dt,
+                                                 double       *force);
+
     unsigned int n_elements() const
     {
       return cell_index.size();
@@ -180,8 +189,19 @@ namespace anvil::Element
                        double            *sigma) const;
 
   private:
+    /** The reference loop, one element at a time, over [begin, end). */
     template <Formulation F, Integration I, HourglassType H>
-    LoopResult loop(const double *x, const double *v, double dt, double *force);
+    LoopResult loop(const double *x,
+                    const double *v,
+                    double        dt,
+                    double       *force,
+                    unsigned int  begin,
+                    unsigned int  end);
+
+    /** The fast loop for one-point updated Lagrangian elements: batches of
+        8 elements in structure-of-arrays form, vectorised across them. */
+    template <HourglassType H>
+    LoopResult batched_loop(const double *x, const double *v, double dt, double *force);
 
     const MaterialModel::Interface &material;
     const Formulation               formulation;

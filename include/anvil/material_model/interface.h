@@ -78,6 +78,20 @@ namespace anvil
                                         double       *stress,
                                         double       *history) const;
 
+      /** Number of material points the batched update handles at once. */
+      static constexpr unsigned int batch_size = 8;
+
+      /**
+       * The updated Lagrangian update for a batch of points, laid out so
+       * that the compiler can vectorise across them: component k of point
+       * l is D[k][l], stress[k][l]. The default calls the one-point
+       * version for each point; models override it for speed.
+       */
+      virtual void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                              const double dt,
+                                              double (&stress)[6][batch_size],
+                                              double *const (&history)[batch_size]) const;
+
       /**
        * Total Lagrangian evaluation: second Piola-Kirchhoff stress @p S
        * from the deformation gradient @p F (row major 3x3) and the

@@ -1,0 +1,130 @@
+/**
+ * Element throughput of the explicit step on one core.
+ *
+ * A block of n^3 hexahedra (default n = 47: 103823 elements), elastic,
+ * updated Lagrangian, in a smooth non-uniform velocity field. One cycle is
+ * the whole explicit step: zeroing forces, the element loop (stress update,
+ * internal and hourglass forces, stable time step) and the central
+ * difference update of all nodes. Prints nanoseconds per element-cycle for
+ * one-point integration with viscous hourglass control and for full
+ * integration, the solver state per element and the peak memory per element.
+ *
+ * Usage: element_throughput [n] [cycles]
+ */
+#include <anvil/element/element_group.h>
+#include <anvil/material_model/elastic.h>
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+using namespace anvil;
+
+namespace
+{
+  struct Result
+  {
+    double ns_per_element_cycle;
+    double state_bytes_per_element;
+  };
+
+  Result run(const unsigned int             n,
+             const unsigned int             cycles,
+             const Element::Integration     integration,
+             const Element::HourglassType   hourglass = Element::HourglassType::viscous,
+             const Formulation              formulation = Formulation::updated_lagrangian)
+  {
+    MaterialModel::Elastic material;
+    material.set(7850., 2.06e11, 0.3);
+    Element::ElementGroup group(material, formulation, integration, hourglass, 0.1);
+    const unsigned int    nn = n + 1;
+    const double          h  = 1e-2;
+    std::vector<double>   x(3 * nn * nn * nn), v(x.size()), f(x.size()), m(x.size(), 0.);
+    for (unsigned int k = 0; k < nn; ++k)
+      for (unsigned int j = 0; j < nn; ++j)
+        for (unsigned int i = 0; i < nn; ++i)
+          {
+            const unsigned int id = i + nn * (j + nn * k);
+            x[3 * id]             = i * h;
+            x[3 * id + 1]         = j * h;
+            x[3 * id + 2]         = k * h;
+            // A smooth velocity field with shear and stretch.
+            v[3 * id]     = 1.0 * std::sin(0.1 * j) + 0.5 * std::cos(0.07 * k);
+            v[3 * id + 1] = 0.3 * std::sin(0.05 * i);
+            v[3 * id + 2] = 0.2 * std::cos(0.11 * j);
+          }
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int j = 0; j < n; ++j)
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            std::array<unsigned int, 8> node;
+            double                      X[8][3], me[8];
+            for (unsigned int c = 0; c < 8; ++c)
+              {
+                const unsigned int id = (i + (c & 1)) + nn * ((j + ((c >> 1) & 1)) + nn * (k + ((c >> 2) & 1)));
+                node[c]               = 3 * id;
+                for (unsigned int d = 0; d < 3; ++d)
+                  X[c][d] = x[3 * id + d];
+              }
+            group.add_element(node, X, group.n_elements());
+            Element::lumped_mass(X, material.density(), me);
+            for (unsigned int c = 0; c < 8; ++c)
+              for (unsigned int d = 0; d < 3; ++d)
+                m[node[c] + d] += me[c];
+          }
+    group.finalize();
+
+    double       dt    = 0.;
+    const auto   cycle = [&]() {
+      std::fill(f.begin(), f.end(), 0.);
+      const auto r = group.compute_internal_forces(x.data(), v.data(), dt, f.data());
+      dt           = 0.9 * r.critical_time_step;
+      for (std::size_t i = 0; i < x.size(); ++i)
+        {
+          v[i] += dt * f[i] / m[i];
+          x[i] += dt * v[i];
+        }
+    };
+    for (unsigned int c = 0; c < 3; ++c) // warm up
+      cycle();
+    const auto start = std::chrono::steady_clock::now();
+    for (unsigned int c = 0; c < cycles; ++c)
+      cycle();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double nodal   = 4. * x.size() * sizeof(double) / group.n_elements(); // x, v, f, m
+    return {1e9 * seconds / (double(cycles) * group.n_elements()), group.memory_per_element() + nodal};
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const unsigned int n      = argc > 1 ? std::atoi(argv[1]) : 47;
+  const unsigned int cycles = argc > 2 ? std::atoi(argv[2]) : 40;
+  std::printf("element_throughput: %u elements (%u^3), %u cycles, one core\n", n * n * n, n, cycles);
+  const Result one  = run(n, cycles, Element::Integration::one_point);
+  const Result full = run(n, cycles / 4 + 1, Element::Integration::full);
+  const Result none  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::none);
+  const Result stiff = run(n, cycles, Element::Integration::one_point, Element::HourglassType::stiffness);
+  const Result tl    = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+                           Formulation::total_lagrangian);
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  const double peak = usage.ru_maxrss * 1024.;
+  std::printf("one-point: %.1f ns per element-cycle (updated Lagrangian, elastic, viscous hourglass)\n",
+              one.ns_per_element_cycle);
+  std::printf("full: %.1f ns per element-cycle (updated Lagrangian, elastic, 2x2x2 Gauss)\n",
+              full.ns_per_element_cycle);
+  std::printf("full / one-point: %.2f\n", full.ns_per_element_cycle / one.ns_per_element_cycle);
+  std::printf("one-point without hourglass control: %.1f ns; stiffness hourglass control: %.1f ns; "
+              "total Lagrangian (viscous): %.1f ns per element-cycle\n",
+              none.ns_per_element_cycle, stiff.ns_per_element_cycle, tl.ns_per_element_cycle);
+  std::printf("memory: %.0f bytes per element (one-point solver state incl. nodal vectors; full: %.0f)\n",
+              one.state_bytes_per_element, full.state_bytes_per_element);
+  std::printf("peak resident memory: %.0f bytes per element (process peak / elements, largest run)\n",
+              peak / (n * n * n));
+  return 0;
+}
