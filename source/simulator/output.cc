@@ -20,7 +20,7 @@ namespace anvil
   // energy.csv every history interval, one probe_NAME.csv per probe and one
   // contact_NAME.csv per contact pair. Rank 0 writes; probe values come
   // from the rank that owns the probed node.
-  void Simulator::write_history(const double t)
+  void Simulator::write_history(const double t, const double dt)
   {
     const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
 
@@ -31,7 +31,7 @@ namespace anvil
           {
             const auto g              = probes[p].x_dof + d;
             probe_values[6 * p + d]     = position(g) - reference_position(g);
-            probe_values[6 * p + 3 + d] = velocity(g);
+            probe_values[6 * p + 3 + d] = velocity(g) - 0.5 * dt * force(g) / mass(g);
           }
     if (!probes.empty())
       Utilities::MPI::sum(probe_values, mpi_communicator, probe_values);
@@ -40,7 +40,7 @@ namespace anvil
     std::vector<double> momentum(3 * bodies.size(), 0.);
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
       momentum[3 * dof_body[i] + dof_component[i]] +=
-        mass.local_element(i) * velocity.local_element(i);
+        mass.local_element(i) * velocity.local_element(i) - 0.5 * dt * force.local_element(i);
     Utilities::MPI::sum(momentum, mpi_communicator, momentum);
     if (!root)
       return;

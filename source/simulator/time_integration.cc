@@ -90,16 +90,16 @@ namespace anvil
 
   // @sect3{Central difference update}
   //
-  // Also returns, through the energies, the kinetic energy at the integer
-  // time n as 1/2 v^{n-1/2} M v^{n+1/2}, the form that the leapfrog
-  // scheme conserves, and the work of the reaction forces at constrained
-  // dofs.
-  void Simulator::update_kinematics(const double dt_previous, const double dt)
+  // The velocity update also gives the kinetic energy at the integer time
+  // n as 1/2 v^{n-1/2} M v^{n+1/2}, the form that the leapfrog scheme
+  // conserves, and the work of the reaction forces at constrained dofs.
+  // Histories are written between the velocity and the position update,
+  // when positions are those of time n.
+  void Simulator::update_velocity(const double dt_previous, const double dt)
   {
     TimerOutput::Scope t(*timer, "time integration");
     const double       dt_avg = 0.5 * (dt_previous + dt);
     const unsigned int n      = position.locally_owned_size();
-    double            *x      = position.begin();
     double            *v      = velocity.begin();
     const double      *f      = force.begin();
     const double      *m      = mass.begin();
@@ -121,13 +121,21 @@ namespace anvil
                   constrained_velocity[k] * dt;
         v[i] = constrained_velocity[k];
       }
-    for (unsigned int i = 0; i < n; ++i)
-      x[i] += dt * v[i];
-
     std::vector<double> sums = {kinetic, work};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
     energies.kinetic = 0.5 * sums[0];
     energies.external_work += sums[1];
+  }
+
+
+  void Simulator::update_position(const double dt)
+  {
+    TimerOutput::Scope t(*timer, "time integration");
+    const unsigned int n = position.locally_owned_size();
+    double            *x = position.begin();
+    const double      *v = velocity.begin();
+    for (unsigned int i = 0; i < n; ++i)
+      x[i] += dt * v[i];
   }
 
 
@@ -317,11 +325,11 @@ namespace anvil
         for (const auto &r : contact_results)
           energies.contact += r.energy;
 
-        update_kinematics(dt_previous, last ? 0. : current_dt);
+        update_velocity(dt_previous, last ? 0. : current_dt);
         check_health(time, step_number);
         if (time >= next_history - eps || last)
           {
-            write_history(time);
+            write_history(time, last ? 0. : current_dt);
             next_history += history_interval;
           }
         if (time >= next_progress - eps || last)
@@ -346,6 +354,7 @@ namespace anvil
                                  std::to_string(max_steps) + " at t = " +
                                  std::to_string(time) + " s");
 
+        update_position(current_dt);
         position.update_ghost_values();
         velocity.update_ghost_values();
         time += current_dt;

@@ -102,11 +102,15 @@ namespace anvil
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     void   apply_contact();
-    void   update_kinematics(double dt_previous, double dt);
+    void   update_velocity(double dt_previous, double dt);
+    void   update_position(double dt);
     void   check_health(double time, unsigned int step);
 
     // Output (source/simulator/output.cc)
-    void write_history(double time);
+    /** Histories at time @p time, between the velocity and the position
+        update; @p dt is the coming step (velocities are reported at time
+        n as v^{n+1/2} - dt/2 a^n). */
+    void write_history(double time, double dt);
     void output_results(double time, const std::string &basename);
     void write_pvd();
 
