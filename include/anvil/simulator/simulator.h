@@ -174,6 +174,8 @@ namespace anvil
     unsigned int step_number    = 0;
     double       time           = 0;
     long int     inverted_cell  = -1;
+    /** Consecutive steps with the energy above the tolerance. */
+    unsigned int growth_steps   = 0;
 
     // Files (rank 0)
     std::ofstream                energy_file, momentum_file;
