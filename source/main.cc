@@ -2,6 +2,7 @@
  * @file
  * anvil SCENE.prm | --help | --print-parameters
  */
+#include <anvil/material_model/material_point_driver.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
@@ -14,7 +15,9 @@ namespace
   const char *usage =
     "Usage: anvil SCENE.prm            run a scene (mpirun -np N anvil SCENE.prm runs it distributed)\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
+    "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
+    "       anvil --print-parameters --material-point   the same for driver files\n"
     "       anvil --help               this text\n"
     "Exit status: 0 success, 2 bad input, 3 numerical failure, 1 other errors.\n";
 }
@@ -26,7 +29,20 @@ int main(int argc, char **argv)
   const std::vector<std::string> args(argv + 1, argv + argc);
 
   const bool check_only = args.size() == 2 && args[0] == "--check";
-  if (args.size() != 1 && !check_only)
+  const bool driver     = args.size() == 2 && args[0] == "--material-point";
+  if (args.size() == 2 && args[0] == "--print-parameters" && args[1] == "--material-point")
+    {
+      if (root)
+        {
+          dealii::ParameterHandler prm;
+          anvil::MaterialModel::MaterialPointDriver::declare_parameters(prm);
+          prm.print_parameters(std::cout,
+                               dealii::ParameterHandler::OutputStyle::PRM |
+                                 dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
+        }
+      return 0;
+    }
+  if (args.size() != 1 && !check_only && !driver)
     {
       if (root)
         std::cerr << "anvil: error: expected exactly one argument\n" << usage;
@@ -44,7 +60,7 @@ int main(int argc, char **argv)
         anvil::Simulator::print_parameters(std::cout);
       return 0;
     }
-  if (!check_only && !args[0].empty() && args[0][0] == '-')
+  if (!check_only && !driver && !args[0].empty() && args[0][0] == '-')
     {
       if (root)
         std::cerr << "anvil: error: unknown option '" << args[0] << "'\n" << usage;
@@ -57,6 +73,16 @@ int main(int argc, char **argv)
   // waiting in a collective.
   try
     {
+      if (driver)
+        {
+          // One material point: rank 0 alone does the work.
+          if (root)
+            {
+              anvil::MaterialModel::MaterialPointDriver d(args.back());
+              std::cout << "anvil: material point written to " << d.run() << std::endl;
+            }
+          return 0;
+        }
       anvil::Simulator simulator(args.back(), MPI_COMM_WORLD);
       if (check_only)
         simulator.check();

@@ -146,6 +146,8 @@ namespace anvil::Contact
         surf.segments.clear();
         surf.stiffness.clear();
         surf.depth.clear();
+        surf.element.clear();
+        surf.active.clear();
         surf.node_segments.assign(dofs.size(), {});
         for (const auto &[n, k] : order)
           {
@@ -156,12 +158,23 @@ namespace anvil::Contact
             surf.segments.push_back(n);
             surf.stiffness.push_back(segs[k].stiffness);
             surf.depth.push_back(segs[k].depth);
+            surf.element.push_back(segs[k].element);
+            surf.active.push_back(true);
           }
         surf.nodes.clear();
         for (unsigned int i = 0; i < dofs.size(); ++i)
           if (!surf.node_segments[i].empty())
             surf.nodes.push_back(i);
       }
+  }
+
+
+  void PenaltyContact::deactivate_elements(const std::vector<unsigned long> &ids)
+  {
+    for (auto &surf : surface)
+      for (unsigned int k = 0; k < surf.segments.size(); ++k)
+        if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
+          surf.active[k] = false;
   }
 
 
@@ -214,9 +227,12 @@ namespace anvil::Contact
     // Slave node normals: area-weighted average of the normals of the
     // slave segments around each node, in the current configuration.
     std::vector<Vec> slave_normal(x.size() / 3, Vec{0, 0, 0});
-    for (const auto &n : slave.segments)
+    for (unsigned int k = 0; k < slave.segments.size(); ++k)
       {
-        const Vec a = cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
+        if (!slave.active[k])
+          continue;
+        const auto &n = slave.segments[k];
+        const Vec   a = cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
         for (unsigned int j = 0; j < 4; ++j)
           slave_normal[n[j]] = slave_normal[n[j]] + a;
       }
@@ -262,6 +278,9 @@ namespace anvil::Contact
     std::vector<Value> nearest;
     for (const unsigned int s : slave.nodes)
       {
+        // A node whose every segment is eroded is no longer on the surface.
+        if (norm(slave_normal[s]) == 0.)
+          continue;
         const Vec t = pos(s);
         // Cheap rejection: outside the master surface's box by more than
         // the deepest admissible penetration.
@@ -296,6 +315,8 @@ namespace anvil::Contact
         double       xi_c = 0, eta_c = 0;
         for (const unsigned int seg : master.node_segments[m])
           {
+            if (!master.active[seg])
+              continue;
             const auto  &n = master.segments[seg];
             unsigned int k = 0;
             while (n[k] != m)

@@ -3,6 +3,7 @@
  * The explicit element loop. See element_group.h for conventions.
  */
 #include <anvil/element/element_group.h>
+#include <anvil/kinematics/rotation.h>
 #include <anvil/utilities/input_error.h>
 
 #include <algorithm>
@@ -129,47 +130,7 @@ namespace anvil::Element
              2. * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
     }
 
-    /**
-     * Objective rotation of the stress by the spin W over dt with the
-     * Hughes-Winget midpoint rule, Q = (I - dt W/2)^-1 (I + dt W/2),
-     * sigma <- Q sigma Q^T: the integrated form of the Jaumann rate of seed
-     * Eq. (15) that stays exactly orthogonal (Hughes & Winget 1980).
-     */
-    inline void rotate_stress(const double w01,
-                              const double w12,
-                              const double w02,
-                              const double dt,
-                              double      *s)
-    {
-      // With K = dt W / 2 and its axial vector k (K x = k x x),
-      // (I - K)^{-1} = I + (K + K^2) / (1 + k.k) since K^3 = -(k.k) K, so
-      // Q = (I - K)^{-1} (I + K) = I + 2 (K + K^2) / (1 + k.k): exactly
-      // orthogonal, with no matrix inverse.
-      const double h  = 0.5 * dt;
-      const double k0 = -h * w12, k1 = h * w02, k2 = -h * w01; // axial vector
-      const double K[3][3] = {{0., -k2, k1}, {k2, 0., -k0}, {-k1, k0, 0.}};
-      const double kk = k0 * k0 + k1 * k1 + k2 * k2;
-      const double c  = 2. / (1. + kk);
-      const double kv[3] = {k0, k1, k2};
-      double       Q[3][3];
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          Q[i][j] = (i == j) + c * (K[i][j] + kv[i] * kv[j] - (i == j) * kk);
-      double S[3][3], T[3][3];
-      voigt_to_matrix(s, S);
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 3; ++j)
-          T[i][j] = Q[i][0] * S[0][j] + Q[i][1] * S[1][j] + Q[i][2] * S[2][j];
-      auto r = [&](unsigned int i, unsigned int j) {
-        return T[i][0] * Q[j][0] + T[i][1] * Q[j][1] + T[i][2] * Q[j][2];
-      };
-      s[0] = r(0, 0);
-      s[1] = r(1, 1);
-      s[2] = r(2, 2);
-      s[3] = r(0, 1);
-      s[4] = r(1, 2);
-      s[5] = r(0, 2);
-    }
+    using Kinematics::rotate_stress;
   } // namespace
 
 
@@ -208,17 +169,19 @@ namespace anvil::Element
                                                         HourglassType::none)
     , hourglass_coefficient(hourglass_coefficient)
     , n_qp(integration == Integration::one_point ? 1 : 8)
-    , n_hist(material.n_history())
+    , n_hist(material.n_history(formulation))
   {}
 
 
   void ElementGroup::add_element(const std::array<unsigned int, 8> &node,
                                  const double (&X)[8][3],
-                                 const unsigned int cell,
-                                 const bool         owned)
+                                 const unsigned int  cell,
+                                 const bool          owned,
+                                 const unsigned long id)
   {
     nodes.insert(nodes.end(), node.begin(), node.end());
     cell_index.push_back(cell);
+    global_id.push_back(id == static_cast<unsigned long>(-1) ? cell : id);
     energy_weight.push_back(owned ? 1. : 0.);
 
     // Reference Jacobians at the element's points; the volume by full
@@ -266,6 +229,8 @@ namespace anvil::Element
       hourglass_resistance.assign(12 * n, 0.);
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
+    if (material.erodes())
+      alive.assign(n, 1);
   }
 
 
@@ -303,6 +268,9 @@ namespace anvil::Element
     // runs batched; the others element by element.
     const unsigned int n = n_elements();
     const bool         ul = (formulation == Formulation::updated_lagrangian);
+    // Elements that can erode go element by element: the batched loop has
+    // no per-lane exit, and failing materials (plasticity) are evaluated
+    // point by point anyway.
     if (integration == Integration::full)
       return ul ? loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
                     x, v, dt, force, 0, n) :
@@ -311,15 +279,24 @@ namespace anvil::Element
     switch (hourglass)
       {
         case HourglassType::viscous:
-          return ul ? batched_loop<HourglassType::viscous>(x, v, dt, force) :
+          return ul && alive.empty() ?
+                   batched_loop<HourglassType::viscous>(x, v, dt, force) :
+                   ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::viscous>(
+                          x, v, dt, force, 0, n) :
                       loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::viscous>(
                         x, v, dt, force, 0, n);
         case HourglassType::stiffness:
-          return ul ? batched_loop<HourglassType::stiffness>(x, v, dt, force) :
+          return ul && alive.empty() ?
+                   batched_loop<HourglassType::stiffness>(x, v, dt, force) :
+                   ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::stiffness>(
+                          x, v, dt, force, 0, n) :
                       loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::stiffness>(
                         x, v, dt, force, 0, n);
         default:
-          return ul ? batched_loop<HourglassType::none>(x, v, dt, force) :
+          return ul && alive.empty() ?
+                   batched_loop<HourglassType::none>(x, v, dt, force) :
+                   ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::none>(
+                          x, v, dt, force, 0, n) :
                       loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::none>(
                         x, v, dt, force, 0, n);
       }
@@ -376,8 +353,13 @@ namespace anvil::Element
     LoopResult             result;
     double                 min_dt2 = 1e300;
 
+    const bool can_erode       = !alive.empty();
+    const bool rotate_history  = material.has_tensorial_history();
     for (unsigned int e = begin; e < end; ++e)
       {
+        if (can_erode && !alive[e])
+          continue;
+        bool                failed = false;
         const unsigned int *en = &nodes[8 * e];
         double              xe[8][3], ve[8][3], fe[8][3] = {};
         for (unsigned int n = 0; n < 8; ++n)
@@ -456,6 +438,12 @@ namespace anvil::Element
                                   0.5 * (L[0][2] - L[2][0]),
                                   dt,
                                   sig);
+                    if (rotate_history)
+                      material.rotate_history(0.5 * (L[0][1] - L[1][0]),
+                                              0.5 * (L[1][2] - L[2][1]),
+                                              0.5 * (L[0][2] - L[2][0]),
+                                              dt,
+                                              hst);
                     material.update_cauchy_stress(D, dt, sig, hst);
                     // Seed Eq. (25): rho dw/dt = sigma : D, mid-step stress.
                     double mid[6];
@@ -494,7 +482,7 @@ namespace anvil::Element
                                      0.5 * C(0, 2)};
                 double       old[6];
                 std::copy(sig, sig + 6, old);
-                material.compute_pk2_stress(Fm, E, sig, hst);
+                material.update_pk2_stress(Fm, E, dt, sig, hst);
                 if (dt > 0)
                   {
                     // Seed Eq. (22c): rho_0 dw/dt = S : dE/dt with
@@ -527,6 +515,11 @@ namespace anvil::Element
                     G[a][c] = P[a][0] * Jr[3 * c] + P[a][1] * Jr[3 * c + 1] +
                               P[a][2] * Jr[3 * c + 2];
               }
+
+            // Failure (ABAQUS's rule for solids): the element goes when any
+            // of its integration points has failed.
+            if (can_erode && material.point_failed(hst))
+              failed = true;
 
             // f_Ia -= jxw * sum_c G_ac dN_I/dxi_c
             for (unsigned int n = 0; n < 8; ++n)
@@ -625,6 +618,24 @@ namespace anvil::Element
 
         internal_energy[e] += e_int;
         result.internal_energy_increment += energy_weight[e] * e_int;
+
+        // @sect4{Erosion}
+        //
+        // A failed element stops carrying force from this step on; the
+        // energy it holds (strain, plastic and hourglass work) leaves the
+        // internal and hourglass energies for the eroded one, so the
+        // balance still closes.
+        if (failed)
+          {
+            alive[e] = 0;
+            std::fill(&stresses[6 * e * nq], &stresses[6 * (e + 1) * nq], 0.);
+            const double w = energy_weight[e];
+            result.internal_energy_increment -= w * internal_energy[e];
+            result.hourglass_energy_increment -= w * hourglass_energy[e];
+            result.eroded_energy_increment += w * (internal_energy[e] + hourglass_energy[e]);
+            result.eroded_elements.push_back(global_id[e]);
+            continue;
+          }
 
         // Stable time step of this element: L_e / c with the current
         // density rho_0 V_0 / V (seed Eq. (23)).
@@ -772,6 +783,13 @@ namespace anvil::Element
                 D[4][l] = 0.5 * (L[1][2][l] + L[2][1][l]);
                 D[5][l] = 0.5 * (L[0][2][l] + L[2][0][l]);
               }
+            if (material.has_tensorial_history())
+              for (unsigned int l = 0; l < n_valid; ++l)
+                material.rotate_history(0.5 * (L[0][1][l] - L[1][0][l]),
+                                        0.5 * (L[1][2][l] - L[2][1][l]),
+                                        0.5 * (L[0][2][l] - L[2][0][l]),
+                                        dt,
+                                        n_hist ? &history[n_hist * el[l]] : nullptr);
             // Hughes-Winget rotation, as rotate_stress() but across lanes.
             for (unsigned int l = 0; l < W; ++l)
               {
@@ -806,9 +824,22 @@ namespace anvil::Element
                 sig[4][l] = T10 * Q20 + T11 * Q21 + T12 * Q22;
                 sig[5][l] = T00 * Q20 + T01 * Q21 + T02 * Q22;
               }
+            // Padding lanes work on a scratch copy of the history, so that
+            // the repeated last element is updated once only.
             double *hist[W];
             for (unsigned int l = 0; l < W; ++l)
               hist[l] = n_hist ? &history[n_hist * el[l]] : nullptr;
+            if (n_hist && n_valid < W)
+              {
+                scratch_history.assign(hist[n_valid - 1], hist[n_valid - 1] + n_hist);
+                scratch_history.resize(n_hist * (W - n_valid));
+                for (unsigned int l = n_valid; l < W; ++l)
+                  {
+                    std::copy(hist[n_valid - 1], hist[n_valid - 1] + n_hist,
+                              &scratch_history[n_hist * (l - n_valid)]);
+                    hist[l] = &scratch_history[n_hist * (l - n_valid)];
+                  }
+              }
             material.update_cauchy_stress_batch(D, dt, sig, hist);
             for (unsigned int l = 0; l < W; ++l)
               {

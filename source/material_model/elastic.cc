@@ -82,6 +82,15 @@ namespace anvil::MaterialModel
   }
 
 
+  double Elastic::update_uniaxial_stress(const double strain_increment,
+                                         const double,
+                                         const double stress,
+                                         double *) const
+  {
+    return stress + youngs_modulus() * strain_increment;
+  }
+
+
   void Elastic::compute_pk2_stress(const double *,
                                    const double *E,
                                    double       *S,

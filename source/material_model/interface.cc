@@ -49,6 +49,15 @@ namespace anvil
     }
 
 
+    double Interface::update_uniaxial_stress(const double,
+                                             const double,
+                                             const double,
+                                             double *) const
+    {
+      throw InputError("this material model has no uniaxial (truss) form");
+    }
+
+
     std::map<std::string, RegistryEntry> &registry()
     {
       // A function-local static: safe to use from static initialisers of

@@ -8,7 +8,9 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <iomanip>
 
 namespace anvil
@@ -24,15 +26,24 @@ namespace anvil
   {
     const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
 
-    std::vector<double> probe_values(6 * probes.size(), 0.);
+    // Per probe: displacement, velocity at time n, and the Cauchy stress
+    // of its element (at time n: positions and stresses are those of x^n).
+    constexpr unsigned int n_values = 12;
+    std::vector<double>    probe_values(n_values * probes.size(), 0.);
     for (unsigned int p = 0; p < probes.size(); ++p)
       if (position.locally_owned_elements().is_element(probes[p].x_dof))
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const auto g              = probes[p].x_dof + d;
-            probe_values[6 * p + d]     = position(g) - reference_position(g);
-            probe_values[6 * p + 3 + d] = velocity(g) - 0.5 * dt * force(g) / mass(g);
-          }
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              const auto g                       = probes[p].x_dof + d;
+              probe_values[n_values * p + d]     = position(g) - reference_position(g);
+              probe_values[n_values * p + 3 + d] = velocity(g) - 0.5 * dt * force(g) / mass(g);
+            }
+          if (probes[p].group >= 0)
+            element_groups[probes[p].group].cauchy_stress(probes[p].element,
+                                                          position.begin(),
+                                                          &probe_values[n_values * p + 6]);
+        }
     if (!probes.empty())
       Utilities::MPI::sum(probe_values, mpi_communicator, probe_values);
 
@@ -48,7 +59,7 @@ namespace anvil
     if (!energy_file.is_open())
       {
         energy_file.open(output_directory + "/energy.csv");
-        energy_file << "time,kinetic,internal,hourglass,contact,friction,"
+        energy_file << "time,kinetic,internal,hourglass,contact,friction,eroded,"
                        "external_work,total,balance_error\n";
         momentum_file.open(output_directory + "/momentum.csv");
         momentum_file << "time";
@@ -58,7 +69,8 @@ namespace anvil
         for (const auto &p : probes)
           {
             probe_files.emplace_back(output_directory + "/probe_" + p.name + ".csv");
-            probe_files.back() << "time,ux,uy,uz,vx,vy,vz\n";
+            probe_files.back()
+              << "time,ux,uy,uz,vx,vy,vz,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz\n";
           }
         for (const auto &c : contact_pairs)
           {
@@ -70,7 +82,7 @@ namespace anvil
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
                 << energies.internal << ',' << energies.hourglass << ','
                 << energies.contact << ',' << energies.friction << ','
-                << energies.external_work << ',' << energies.total() << ','
+                << energies.eroded << ',' << energies.external_work << ',' << energies.total() << ','
                 << balance_error << '\n';
     momentum_file << std::setprecision(15) << t;
     double total[3] = {0, 0, 0};
@@ -83,9 +95,22 @@ namespace anvil
     for (unsigned int p = 0; p < probes.size(); ++p)
       {
         probe_files[p] << std::setprecision(12) << t;
-        for (unsigned int k = 0; k < 6; ++k)
-          probe_files[p] << ',' << probe_values[6 * p + k];
+        for (unsigned int k = 0; k < n_values; ++k)
+          probe_files[p] << ',' << probe_values[n_values * p + k];
         probe_files[p] << '\n';
+      }
+    if (!erosion_rows.empty())
+      {
+        if (!erosion_file.is_open())
+          {
+            erosion_file.open(output_directory + "/erosion.csv");
+            erosion_file << "time,element,body,x,y,z,effective_plastic_strain,energy,"
+                            "reference_volume\n";
+          }
+        for (const auto &row : erosion_rows)
+          erosion_file << row << '\n';
+        erosion_rows.clear();
+        erosion_file.flush();
       }
     for (unsigned int c = 0; c < contact_pairs.size(); ++c)
       {
@@ -124,11 +149,30 @@ namespace anvil
     Vector<float> body_id(n_cells), rank(n_cells);
     const float   my_rank = Utilities::MPI::this_mpi_process(mpi_communicator);
 
+    // Scalar history variables of the materials (effective plastic strain,
+    // ...), averaged over each element's points; and the erosion flag.
+    std::map<std::string, Vector<float>> history_fields;
+    for (const auto &group : element_groups)
+      for (const auto &name : group.get_material().history_names())
+        if (name.rfind("back_stress", 0) != 0)
+          history_fields.emplace(name, Vector<float>(n_cells));
+    Vector<float> eroded(n_cells);
+
     const double *x = position.begin();
     for (const auto &group : element_groups)
       for (unsigned int e = 0; e < group.n_elements(); ++e)
         if (group.element_is_owned(e))
         {
+          const auto names = group.get_material().history_names();
+          for (unsigned int k = 0; k < names.size(); ++k)
+            if (history_fields.count(names[k]))
+              {
+                double mean = 0;
+                for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
+                  mean += group.history_variables(e, q)[k] / group.n_quadrature_points();
+                history_fields[names[k]][group.element_cell_index(e)] = mean;
+              }
+          eroded[group.element_cell_index(e)] = group.element_is_eroded(e);
           const unsigned int c = group.element_cell_index(e);
           double             s[6];
           group.cauchy_stress(e, x, s);
@@ -183,6 +227,12 @@ namespace anvil
     data_out.add_data_vector(von_mises, "von_mises");
     data_out.add_data_vector(internal_density, "internal_energy_density");
     data_out.add_data_vector(hourglass_density, "hourglass_energy_density");
+    for (const auto &[name, field] : history_fields)
+      data_out.add_data_vector(field, name);
+    if (n_eroded > 0 || std::any_of(element_groups.begin(), element_groups.end(), [](const auto &g) {
+          return g.get_material().erodes();
+        }))
+      data_out.add_data_vector(eroded, "eroded");
     data_out.add_data_vector(body_id, "body");
     data_out.add_data_vector(rank, "mpi_rank");
     data_out.build_patches();
@@ -209,6 +259,56 @@ namespace anvil
             data_out.write_pvtu_record(pvtu, {basename + ".vtu"});
           }
       }
+  }
+
+
+  void Simulator::write_body_summary()
+  {
+    const unsigned int  nb = bodies.size();
+    std::vector<double> count(3 * nb, 0.), peak(2 * nb, 0.), lo(3 * nb, 1e300), hi(3 * nb, -1e300);
+    for (unsigned int g = 0; g < element_groups.size(); ++g)
+      {
+        const auto &group = element_groups[g];
+        const auto  names = group.get_material().history_names();
+        const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
+        for (unsigned int e = 0; e < group.n_elements(); ++e)
+          if (group.element_is_owned(e))
+            {
+              const bool eroded = group.element_is_eroded(e);
+              count[3 * g] += 1;
+              count[3 * g + 1] += eroded;
+              if (it == names.end())
+                continue;
+              double eps_p = 0;
+              for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
+                eps_p += group.history_variables(e, q)[it - names.begin()] /
+                         group.n_quadrature_points();
+              if (!eroded)
+                peak[2 * g] = std::max(peak[2 * g], eps_p);
+              peak[2 * g + 1] = std::max(peak[2 * g + 1], eps_p);
+            }
+      }
+    for (unsigned int i = 0; i < position.locally_owned_size(); ++i)
+      {
+        const unsigned int b = dof_body[i], d = dof_component[i];
+        lo[3 * b + d]        = std::min(lo[3 * b + d], position.local_element(i));
+        hi[3 * b + d]        = std::max(hi[3 * b + d], position.local_element(i));
+      }
+    Utilities::MPI::sum(count, mpi_communicator, count);
+    Utilities::MPI::max(peak, mpi_communicator, peak);
+    Utilities::MPI::min(lo, mpi_communicator, lo);
+    Utilities::MPI::max(hi, mpi_communicator, hi);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::ofstream out(output_directory + "/bodies.csv");
+    out << "body,elements,eroded,peak_effective_plastic_strain_intact,"
+           "peak_effective_plastic_strain,xmin,ymin,zmin,xmax,ymax,zmax\n"
+        << std::setprecision(12);
+    for (unsigned int b = 0; b < nb; ++b)
+      out << bodies[b].name << ',' << count[3 * b] << ',' << count[3 * b + 1] << ','
+          << peak[2 * b] << ',' << peak[2 * b + 1] << ',' << lo[3 * b] << ',' << lo[3 * b + 1]
+          << ',' << lo[3 * b + 2] << ',' << hi[3 * b] << ',' << hi[3 * b + 1] << ','
+          << hi[3 * b + 2] << '\n';
   }
 
 

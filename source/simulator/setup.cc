@@ -179,7 +179,8 @@ namespace anvil
           element_groups[cell->material_id()].add_element(node,
                                                           X,
                                                           cell->active_cell_index(),
-                                                          cell->is_locally_owned());
+                                                          cell->is_locally_owned(),
+                                                          cell->id().get_coarse_cell_id());
         }
     for (auto &g : element_groups)
       g.finalize();
@@ -319,9 +320,10 @@ namespace anvil
                         }
                       local.push_back(K * A * A / V);
                       local.push_back(V / A);
+                      local.push_back(cell->id().get_coarse_cell_id());
                     }
             for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
-              for (std::size_t i = 0; i < part.size(); i += 18)
+              for (std::size_t i = 0; i < part.size(); i += 19)
                 {
                   Contact::SegmentDescription d;
                   for (unsigned int k = 0; k < 4; ++k)
@@ -330,6 +332,7 @@ namespace anvil
                     d.reference_position[k] = part[i + 4 + k];
                   d.stiffness = part[i + 16];
                   d.depth     = part[i + 17];
+                  d.element   = static_cast<unsigned long>(part[i + 18]);
                   segments[s].push_back(d);
                 }
           }
@@ -380,6 +383,20 @@ namespace anvil
             chosen = a;
         probe.x_dof = static_cast<unsigned long>(chosen[1]);
         probe.owner = static_cast<int>(chosen[2]);
+        if (probe.owner == int(rank))
+          {
+            const auto    local = position.get_partitioner()->global_to_local(probe.x_dof);
+            unsigned long best_id = static_cast<unsigned long>(-1);
+            for (unsigned int g = 0; g < element_groups.size(); ++g)
+              for (unsigned int e = 0; e < element_groups[g].n_elements(); ++e)
+                for (const unsigned int n : element_groups[g].element_nodes(e))
+                  if (n == local && element_groups[g].element_global_id(e) < best_id)
+                    {
+                      best_id       = element_groups[g].element_global_id(e);
+                      probe.group   = g;
+                      probe.element = e;
+                    }
+          }
       }
   }
 

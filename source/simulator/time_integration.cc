@@ -14,6 +14,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -41,20 +42,92 @@ namespace anvil
     const double      *x     = position.begin();
     const double      *v     = velocity.begin();
     double            *f     = force.begin();
-    for (auto &group : element_groups)
+    double                     d_eroded = 0;
+    std::vector<unsigned long> eroded;
+    std::vector<double>        eroded_info;
+    for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
-        const auto r = group.compute_internal_forces(x, v, dt_previous, f);
-        dt_crit      = std::min(dt_crit, r.critical_time_step);
+        auto      &group = element_groups[g];
+        const auto r     = group.compute_internal_forces(x, v, dt_previous, f);
+        dt_crit          = std::min(dt_crit, r.critical_time_step);
         d_int += r.internal_energy_increment;
         d_hg += r.hourglass_energy_increment;
+        d_eroded += r.eroded_energy_increment;
         if (r.inverted_element >= 0 && inverted_cell < 0)
           inverted_cell = group.element_cell_index(r.inverted_element);
+        eroded.insert(eroded.end(), r.eroded_elements.begin(), r.eroded_elements.end());
+        if (!r.eroded_elements.empty())
+          record_erosion(g, r.eroded_elements, eroded_info);
       }
-    std::vector<double> increments = {d_int, d_hg};
+    std::vector<double> increments = {d_int, d_hg, d_eroded, double(eroded.size())};
     Utilities::MPI::sum(increments, mpi_communicator, increments);
     energies.internal += increments[0];
     energies.hourglass += increments[1];
+    energies.eroded += increments[2];
+    // Erosion is rare: only then do the ranks exchange element ids, so that
+    // every replicated contact pair drops the eroded elements' faces.
+    if (increments[3] > 0)
+      {
+        std::vector<unsigned long> all;
+        for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, eroded))
+          all.insert(all.end(), part.begin(), part.end());
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        for (auto &pair : contact_pairs)
+          pair.deactivate_elements(all);
+        for (const auto &part : Utilities::MPI::gather(mpi_communicator, eroded_info, 0))
+          for (std::size_t i = 0; i + 8 <= part.size(); i += 8)
+            {
+              std::ostringstream row;
+              row << std::setprecision(10) << time << ',' << (unsigned long)part[i] << ','
+                  << bodies[(unsigned int)part[i + 1]].name << ',' << part[i + 2] << ','
+                  << part[i + 3] << ',' << part[i + 4] << ',' << part[i + 5] << ','
+                  << part[i + 6] << ',' << part[i + 7];
+              erosion_rows.push_back(row.str());
+              ++n_eroded;
+            }
+      }
     return Utilities::MPI::min(dt_crit, mpi_communicator);
+  }
+
+
+  // What erosion.csv tells of each owned element eroded this step: global
+  // id, body, centre (current), effective plastic strain (mean over the
+  // points, when the model has one) and the energy it held.
+  void Simulator::record_erosion(const unsigned int                group_index,
+                                 const std::vector<unsigned long> &ids,
+                                 std::vector<double>              &info) const
+  {
+    std::vector<unsigned long> sorted(ids);
+    std::sort(sorted.begin(), sorted.end());
+    const auto  &group = element_groups[group_index];
+    const auto   names = group.get_material().history_names();
+    const auto   it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
+    const double *x    = position.begin();
+    for (unsigned int e = 0; e < group.n_elements(); ++e)
+      if (group.element_is_owned(e) &&
+          std::binary_search(sorted.begin(), sorted.end(), group.element_global_id(e)))
+        {
+          double c[3] = {0, 0, 0};
+          for (const unsigned int n : group.element_nodes(e))
+            for (unsigned int d = 0; d < 3; ++d)
+              c[d] += 0.125 * x[n + d];
+          double eps_p = 0;
+          if (it != names.end())
+            for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
+              eps_p += group.history_variables(e, q)[it - names.begin()] /
+                       group.n_quadrature_points();
+          info.insert(info.end(),
+                      {double(group.element_global_id(e)),
+                       double(group_index),
+                       c[0],
+                       c[1],
+                       c[2],
+                       eps_p,
+                       group.element_internal_energy(e) + group.element_hourglass_energy(e),
+                       0.});
+          info.back() = group.element_reference_volume(e);
+        }
   }
 
 
@@ -391,8 +464,12 @@ namespace anvil
     velocity.update_ghost_values();
     output_results(time, "solution");
     write_pvd();
+    write_body_summary();
     pcout << "  done: " << step_number << " steps to t = " << time
-          << " s, energy balance error " << balance_error << "\n"
+          << " s, energy balance error " << balance_error;
+    if (n_eroded > 0)
+      pcout << ", " << n_eroded << " elements eroded (" << output_directory << "/erosion.csv)";
+    pcout << "\n"
           << "  results: " << output_directory << "/energy.csv, "
           << output_directory << "/solution.pvd" << std::endl;
   }

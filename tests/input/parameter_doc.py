@@ -14,6 +14,12 @@ with open(os.path.join(args.source_dir, "doc/parameters.prm")) as f:
     stored = f.read()
 c.check_true("doc/parameters.prm equals anvil --print-parameters", printed == stored,
              "run scripts/make-parameter-doc" if printed != stored else "")
+driver = subprocess.run([args.anvil, "--print-parameters", "--material-point"],
+                        capture_output=True, text=True).stdout
+with open(os.path.join(args.source_dir, "doc/material_point_parameters.prm")) as f:
+    c.check_true("doc/material_point_parameters.prm equals anvil --print-parameters --material-point",
+                 driver == f.read(), "run scripts/make-parameter-doc")
+printed += driver
 
 # Every numeric entry (pattern Double or Integer) must say 'Units:'.
 missing = []

@@ -29,6 +29,10 @@ namespace anvil::Contact
     /** Thickness V / A of each segment's element: the deepest penetration
         accepted as contact. Units: m. */
     std::vector<double> depth;
+    /** Scene-wide id of each segment's element, and whether the segment
+        still takes part (its element has not been eroded). */
+    std::vector<unsigned long> element;
+    std::vector<bool>          active;
     /** Segments around each node of the pair's node list. */
     std::vector<std::vector<unsigned int>> node_segments;
     /** The pair's nodes on this surface. */
@@ -42,6 +46,8 @@ namespace anvil::Contact
     std::array<double, 12>       reference_position;
     double                       stiffness;
     double                       depth;
+    /** Scene-wide id of the segment's element. */
+    unsigned long element = 0;
   };
 
   /** What a contact evaluation reports. */
@@ -75,6 +81,10 @@ namespace anvil::Contact
     /** Build the replicated surfaces from all ranks' segments. */
     void setup(const std::vector<SegmentDescription> &first,
                const std::vector<SegmentDescription> &second);
+
+    /** Take the faces of the eroded elements @p ids (sorted) out of the
+        pair: an eroded element leaves contact. */
+    void deactivate_elements(const std::vector<unsigned long> &ids);
 
     /** Global x-dof indices of the pair's nodes, in the pair's order. */
     const std::vector<unsigned long> &node_dofs() const

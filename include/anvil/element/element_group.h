@@ -73,6 +73,11 @@ namespace anvil::Element
     double hourglass_energy_increment = 0;
     /** Index of the first element whose Jacobian is not positive, or -1. */
     long int inverted_element = -1;
+    /** Energy (internal and hourglass) of the owned elements eroded this
+        step, already taken out of the two increments above. Units: J. */
+    double eroded_energy_increment = 0;
+    /** Global ids of the elements (owned and ghost) eroded this step. */
+    std::vector<unsigned long> eroded_elements;
   };
 
   /**
@@ -100,8 +105,9 @@ namespace anvil::Element
      */
     void add_element(const std::array<unsigned int, 8> &node,
                      const double (&X)[8][3],
-                     unsigned int cell_index,
-                     bool         owned = true);
+                     unsigned int  cell_index,
+                     bool          owned     = true,
+                     unsigned long global_id = static_cast<unsigned long>(-1));
 
     /** Allocate stress and history storage once all elements are added. */
     void finalize();
@@ -141,6 +147,21 @@ namespace anvil::Element
     bool element_is_owned(const unsigned int e) const
     {
       return energy_weight[e] != 0.;
+    }
+    /** Scene-wide element id (the coarse cell), the same on every rank. */
+    unsigned long element_global_id(const unsigned int e) const
+    {
+      return global_id[e];
+    }
+    /** Whether element e has been eroded (material failure). */
+    bool element_is_eroded(const unsigned int e) const
+    {
+      return !alive.empty() && !alive[e];
+    }
+    /** History variables of quadrature point q of element e. */
+    const double *history_variables(const unsigned int e, const unsigned int q) const
+    {
+      return n_hist ? &history[n_hist * (e * n_qp + q)] : nullptr;
     }
     const std::array<unsigned int, 8> element_nodes(const unsigned int e) const;
 
@@ -213,6 +234,10 @@ namespace anvil::Element
 
     std::vector<unsigned int> nodes;
     std::vector<unsigned int> cell_index;
+    std::vector<unsigned long> global_id;
+    /** 1 for intact elements, 0 for eroded ones; empty for materials that
+        cannot fail. */
+    std::vector<unsigned char> alive;
     std::vector<double>       reference_volume;
     /** 1 for owned elements, 0 for ghost elements. */
     std::vector<double> energy_weight;
@@ -229,5 +254,7 @@ namespace anvil::Element
     std::vector<double> hourglass_resistance;
     std::vector<double> internal_energy;
     std::vector<double> hourglass_energy;
+    /** History of the padding lanes of the last batch. */
+    std::vector<double> scratch_history;
   };
 } // namespace anvil::Element

@@ -38,10 +38,19 @@ namespace anvil::MaterialModel
     {
       return lambda + 2. * mu;
     }
+    double youngs_modulus() const override
+    {
+      return mu * (3. * lambda + 2. * mu) / (lambda + mu);
+    }
     bool supports(const Formulation) const override
     {
       return true;
     }
+
+    double update_uniaxial_stress(double  strain_increment,
+                                  double  dt,
+                                  double  stress,
+                                  double *history) const override;
 
     void update_cauchy_stress(const double *D,
                               double        dt,

@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace anvil
 {
@@ -58,10 +59,50 @@ namespace anvil
           control. Units: Pa. */
       virtual double wave_modulus() const = 0;
 
-      /** Number of history variables per material point. */
-      virtual unsigned int n_history() const
+      /** Young's modulus E of the uniaxial (truss) form and its wave
+          speed sqrt(E / rho). Units: Pa. */
+      virtual double youngs_modulus() const = 0;
+
+      /** Number of history variables per material point of a body in
+          formulation @p f. */
+      virtual unsigned int n_history(const Formulation f = Formulation::updated_lagrangian) const
+      {
+        (void)f;
+        return 0;
+      }
+
+      /** Names of the history variables that output shows (the first
+          n_output_history() of them), e.g. "effective_plastic_strain". */
+      virtual std::vector<std::string> history_names() const
+      {
+        return {};
+      }
+
+      /** Number of history variables of the uniaxial form. */
+      virtual unsigned int n_uniaxial_history() const
       {
         return 0;
+      }
+
+      /** Names of the history variables of the uniaxial form. */
+      virtual std::vector<std::string> uniaxial_history_names() const
+      {
+        return {};
+      }
+
+      /** Whether material points of this model can fail and their
+          elements be eroded (asked once per element group, so that a
+          model without failure costs nothing in the element loop). */
+      virtual bool erodes() const
+      {
+        return false;
+      }
+
+      /** Whether the point with history @p history has failed. */
+      virtual bool point_failed(const double *history) const
+      {
+        (void)history;
+        return false;
       }
 
       /** Whether this model can be used with formulation @p f. */
@@ -77,6 +118,27 @@ namespace anvil
                                         const double  dt,
                                         double       *stress,
                                         double       *history) const;
+
+      /**
+       * Whether the history holds tensors (a back stress) that must rotate
+       * with the material like the stress; the updated Lagrangian kernels
+       * then call rotate_history() with the spin before the update.
+       */
+      virtual bool has_tensorial_history() const
+      {
+        return false;
+      }
+
+      /** Rotate the tensorial history by the spin W (components W_01,
+          W_12, W_02) over @p dt, as the kernel rotates the stress. */
+      virtual void rotate_history(const double w01,
+                                  const double w12,
+                                  const double w02,
+                                  const double dt,
+                                  double      *history) const
+      {
+        (void)w01, (void)w12, (void)w02, (void)dt, (void)history;
+      }
 
       /** Number of material points the batched update handles at once. */
       static constexpr unsigned int batch_size = 8;
@@ -101,6 +163,31 @@ namespace anvil
                                       const double *E,
                                       double       *S,
                                       double       *history) const;
+
+      /**
+       * Total Lagrangian evaluation of a rate-dependent or path-dependent
+       * model, which needs the time step @p dt (0 on the first call). The
+       * default ignores @p dt and calls compute_pk2_stress().
+       */
+      virtual void update_pk2_stress(const double *F,
+                                     const double *E,
+                                     const double  dt,
+                                     double       *S,
+                                     double       *history) const
+      {
+        (void)dt;
+        compute_pk2_stress(F, E, S, history);
+      }
+
+      /**
+       * The uniaxial (truss) form: axial stress after the axial logarithmic
+       * strain increment @p strain_increment over @p dt, from @p stress.
+       * Returns the new axial stress.
+       */
+      virtual double update_uniaxial_stress(const double strain_increment,
+                                            const double dt,
+                                            const double stress,
+                                            double      *history) const;
     };
 
 

@@ -35,10 +35,12 @@ namespace anvil
     double hourglass     = 0;
     double contact       = 0;
     double friction      = 0;
+    /** Energy held by eroded elements when they were removed. */
+    double eroded        = 0;
     double external_work = 0;
     double total() const
     {
-      return kinetic + internal + hourglass + contact + friction;
+      return kinetic + internal + hourglass + contact + friction + eroded;
     }
   };
 
@@ -51,6 +53,11 @@ namespace anvil
     /** Global x-dof index of the chosen node, and its owner. */
     unsigned long x_dof = 0;
     int           owner = 0;
+    /** On the owner: the element group and element whose stress the probe
+        reports (of the elements around the node, the one with the smallest
+        scene-wide id, so that every partition reports the same). */
+    int          group   = -1;
+    unsigned int element = 0;
   };
 
   class Simulator
@@ -102,6 +109,9 @@ namespace anvil
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     void   apply_contact();
+    void   record_erosion(unsigned int                      group_index,
+                          const std::vector<unsigned long> &ids,
+                          std::vector<double>              &info) const;
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
     void   check_health(double time, unsigned int step);
@@ -113,6 +123,9 @@ namespace anvil
     void write_history(double time, double dt);
     void output_results(double time, const std::string &basename);
     void write_pvd();
+    /** bodies.csv at the end of a run: per body, elements, eroded elements,
+        peak effective plastic strain, current bounding box. */
+    void write_body_summary();
 
     MPI_Comm                   mpi_communicator;
     dealii::ConditionalOStream pcout;
@@ -177,8 +190,13 @@ namespace anvil
     /** Consecutive steps with the energy above the tolerance. */
     unsigned int growth_steps   = 0;
 
+    /** Eroded elements so far (scene-wide), and the rows of erosion.csv
+        not yet written. */
+    unsigned long            n_eroded = 0;
+    std::vector<std::string> erosion_rows;
+
     // Files (rank 0)
-    std::ofstream                energy_file, momentum_file;
+    std::ofstream                energy_file, momentum_file, erosion_file;
     std::vector<std::ofstream>   probe_files, contact_files;
     std::vector<std::pair<double, std::string>> pvd_records;
     unsigned int                 output_count = 0;

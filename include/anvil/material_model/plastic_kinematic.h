@@ -1,0 +1,193 @@
+/**
+ * @file
+ * Bilinear elastic-plastic steel with mixed kinematic-isotropic hardening,
+ * Cowper-Symonds strain-rate scaling of the yield stress and failure
+ * (seed section 5.2, Eq. (63), Table 1; LS-DYNA's *MAT_PLASTIC_KINEMATIC).
+ */
+#pragma once
+
+#include <anvil/material_model/interface.h>
+
+namespace anvil::MaterialModel
+{
+  /**
+   * The hardening and rate law of seed Eq. (63), shared by the 3D material
+   * point and the uniaxial (truss) form so that neither duplicates it:
+   *
+   *   sigma_y = R(eps_dot) (sigma_0 + beta E_p eps_p),
+   *   R = 1 + (eps_dot / C)^(1/p),   E_p = E E_t / (E - E_t),
+   *
+   * with the back stress moving by (1 - beta) E_p per unit effective plastic
+   * strain (Prager's rule). beta = 0 is kinematic, beta = 1 isotropic
+   * hardening.
+   */
+  struct PlasticKinematicLaw
+  {
+    double sigma_0 = 0;
+    double plastic_modulus = 0;
+    double beta = 0;
+    bool   rate_effects = false;
+    double C = 0;
+    double p = 1;
+    double failure_strain = 0;
+
+    /** Cowper-Symonds factor R of the effective strain rate @p rate. */
+    double rate_factor(const double rate) const;
+
+    /** Radius of the yield surface (in effective stress) at plastic
+        strain @p eps_p and rate factor @p R. Units: Pa. */
+    double yield_stress(const double eps_p, const double R) const
+    {
+      return R * (sigma_0 + beta * plastic_modulus * eps_p);
+    }
+
+    /**
+     * Effective plastic strain increment of the radial return from the
+     * trial effective (relative) stress @p q_trial: the consistency
+     * condition q_trial - elastic_term dep - (1 - beta) E_p dep =
+     * yield_stress(eps_p + dep, R), linear in dep. @p elastic_term is 3G
+     * for a 3D point and E for a uniaxial one. Returns 0 when elastic.
+     */
+    double plastic_increment(const double q_trial,
+                             const double eps_p,
+                             const double R,
+                             const double elastic_term) const
+    {
+      const double excess = q_trial - yield_stress(eps_p, R);
+      if (!(excess > 0))
+        return 0.;
+      return excess / (elastic_term + (1. - beta) * plastic_modulus +
+                       R * beta * plastic_modulus);
+    }
+
+    /** Back-stress modulus (1 - beta) E_p. Units: Pa. */
+    double kinematic_modulus() const
+    {
+      return (1. - beta) * plastic_modulus;
+    }
+  };
+
+
+  /**
+   * Plastic-kinematic steel (seed Eq. (63)).
+   *
+   * - Updated Lagrangian: the Cauchy stress arrives rotated by the spin
+   *   (Jaumann, as for the elastic model); the elastic trial stress from D dt
+   *   is returned radially to the von Mises surface around the back stress.
+   *   The back stress is rotated with the stress.
+   * - Total Lagrangian: the same rate-form (hypoelastic-plastic) update,
+   *   evaluated on the reference mesh: the Cauchy stress is recovered from
+   *   S and the previous F, rotated and updated with the D and W of the
+   *   mid-step F, and pulled back to S = J F^-1 sigma F^-T. This is the
+   *   plasticity of ABAQUS/Explicit and LS-DYNA, against which the seed
+   *   computes; a hyperelastic multiplicative model would answer a
+   *   different question.
+   * - Uniaxial (truss): the same law in one dimension.
+   *
+   * The rate entering R is the effective total strain rate
+   * sqrt(2/3 D':D') (LS-DYNA's default for this model, VP = 0): known
+   * before the return, so the return stays explicit, and equal to the
+   * plastic rate within (E_t/E) in plastic flow.
+   *
+   * History per point: back stress (6), effective plastic strain,
+   * plastic work density, effective strain rate; total Lagrangian adds the
+   * previous F - I (9) and the back stress is kept in the rotated frame
+   * like the stress.
+   */
+  class PlasticKinematic : public Interface
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm) override;
+
+    /** Set the constants directly (unit tests). */
+    void set(double density, double youngs_modulus, double poissons_ratio,
+             const PlasticKinematicLaw &law, bool erosion);
+
+    double density() const override
+    {
+      return rho;
+    }
+    double bulk_modulus() const override
+    {
+      return lambda + 2. / 3. * mu;
+    }
+    double wave_modulus() const override
+    {
+      return lambda + 2. * mu;
+    }
+    double youngs_modulus() const override
+    {
+      return E;
+    }
+    bool supports(const Formulation) const override
+    {
+      return true;
+    }
+    unsigned int n_history(const Formulation f) const override
+    {
+      return f == Formulation::total_lagrangian ? 18 : 9;
+    }
+    std::vector<std::string> history_names() const override
+    {
+      return {"back_stress_xx", "back_stress_yy", "back_stress_zz",
+              "back_stress_xy", "back_stress_yz", "back_stress_xz",
+              "effective_plastic_strain", "plastic_work_density",
+              "effective_strain_rate"};
+    }
+    unsigned int n_uniaxial_history() const override
+    {
+      return 3;
+    }
+    std::vector<std::string> uniaxial_history_names() const override
+    {
+      return {"back_stress", "effective_plastic_strain", "plastic_work_density"};
+    }
+    bool erodes() const override
+    {
+      return erosion;
+    }
+    bool point_failed(const double *history) const override
+    {
+      return history[6] >= law.failure_strain;
+    }
+
+    bool has_tensorial_history() const override
+    {
+      return law.beta < 1.;
+    }
+    void rotate_history(double w01, double w12, double w02, double dt,
+                        double *history) const override;
+
+    void update_cauchy_stress(const double *D,
+                              double        dt,
+                              double       *stress,
+                              double       *history) const override;
+
+    void compute_pk2_stress(const double *F,
+                            const double *E,
+                            double       *S,
+                            double       *history) const override;
+
+    void update_pk2_stress(const double *F,
+                           const double *E,
+                           double        dt,
+                           double       *S,
+                           double       *history) const override;
+
+    double update_uniaxial_stress(double  strain_increment,
+                                  double  dt,
+                                  double  stress,
+                                  double *history) const override;
+
+    const PlasticKinematicLaw &get_law() const
+    {
+      return law;
+    }
+
+  private:
+    double              rho = 0, E = 0, nu = 0, lambda = 0, mu = 0;
+    PlasticKinematicLaw law;
+    bool                erosion = false;
+  };
+} // namespace anvil::MaterialModel

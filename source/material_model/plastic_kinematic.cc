@@ -1,0 +1,351 @@
+/**
+ * @file
+ * Plastic-kinematic steel, seed Eq. (63). See plastic_kinematic.h.
+ */
+#include <anvil/kinematics/rotation.h>
+#include <anvil/kinematics/tensor3.h>
+#include <anvil/material_model/plastic_kinematic.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <map>
+
+namespace anvil::MaterialModel
+{
+  namespace
+  {
+    // @sect3{Presets}
+    //
+    // A preset fills every entry the scene leaves empty. "Table 1 steel" is
+    // the reinforcement of the seed's Table 1 (density: steel's usual
+    // 7850 kg/m^3, which the table does not give).
+    struct Preset
+    {
+      std::map<std::string, double> values;
+    };
+
+    const std::map<std::string, Preset> &presets()
+    {
+      static const std::map<std::string, Preset> p = {
+        {"Table 1 steel",
+         {{{"Density", 7850.},
+           {"Young's modulus", 206e9},
+           {"Poisson's ratio", 0.3},
+           {"Yield stress", 335e6},
+           {"Tangent modulus", 1.2e9},
+           {"Hardening parameter beta", 0.},
+           {"Cowper-Symonds C", 40.},
+           {"Cowper-Symonds p", 5.},
+           {"Failure strain", 0.12}}}}};
+      return p;
+    }
+
+    const char *numeric_entries[][3] = {
+      {"Density", "Reference mass density. Units: kg/m^3.", "0"},
+      {"Young's modulus", "Young's modulus E. Units: Pa.", "0"},
+      {"Poisson's ratio", "Poisson's ratio nu, -1 < nu < 0.5. Units: none.", "-1"},
+      {"Yield stress", "Initial yield stress sigma_0 (seed Eq. (63)). Units: Pa.", "0"},
+      {"Tangent modulus",
+       "Tangent modulus E_t of the bilinear uniaxial curve, 0 <= E_t < E; the "
+       "plastic hardening modulus is E_p = E E_t / (E - E_t). Units: Pa.",
+       "0"},
+      {"Hardening parameter beta",
+       "beta of seed Eq. (63): 0 kinematic, 1 isotropic hardening, between "
+       "them mixed. Units: none.",
+       "0"},
+      {"Cowper-Symonds C",
+       "Strain-rate parameter C of the Cowper-Symonds factor "
+       "1 + (eps_dot / C)^(1/p). Units: 1/s.",
+       "0"},
+      {"Cowper-Symonds p", "Strain-rate exponent p. Units: none.", "0"},
+      {"Failure strain",
+       "Effective plastic strain f_s at which a material point fails "
+       "(used when 'Erosion' is on; 0: never). Units: none.",
+       "0"}};
+  } // namespace
+
+
+  double PlasticKinematicLaw::rate_factor(const double rate) const
+  {
+    if (!rate_effects || !(rate > 0))
+      return 1.;
+    return 1. + std::pow(rate / C, 1. / p);
+  }
+
+
+  void PlasticKinematic::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using namespace dealii;
+    std::string names = "none";
+    for (const auto &[n, preset] : presets())
+      names += "|" + n;
+    prm.declare_entry("Preset",
+                      "none",
+                      Patterns::Selection(names),
+                      "A named parameter set that fills every entry left "
+                      "empty. 'Table 1 steel': the seed's reinforcement "
+                      "(E 206 GPa, nu 0.3, sigma_0 335 MPa, E_t 1.2 GPa, "
+                      "C 40 1/s, p 5, f_s 0.12, beta 0; density 7850 kg/m^3).");
+    for (const auto &e : numeric_entries)
+      prm.declare_entry(e[0],
+                        "",
+                        Patterns::Anything(),
+                        std::string(e[1]) +
+                          " Empty: the preset's value.");
+    prm.declare_entry("Strain rate effects",
+                      "false",
+                      Patterns::Bool(),
+                      "Scale the yield stress by the Cowper-Symonds factor "
+                      "of the effective total strain rate sqrt(2/3 D':D'). "
+                      "Off: no rate is computed.");
+    prm.declare_entry("Erosion",
+                      "false",
+                      Patterns::Bool(),
+                      "Erode an element when its mean effective plastic "
+                      "strain reaches 'Failure strain': it stops carrying "
+                      "force and leaves contact, and its energy moves to the "
+                      "'eroded' column of energy.csv.");
+  }
+
+
+  void PlasticKinematic::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    const std::string preset = prm.get("Preset");
+    auto value = [&](const std::string &entry) {
+      const std::string text = dealii::Utilities::trim(prm.get(entry));
+      if (text.empty())
+        {
+          if (preset == "none")
+            throw InputError("subsection 'plastic kinematic': entry '" + entry +
+                             "' is empty and 'Preset' is none; give a number or "
+                             "choose a preset (" + std::string("Table 1 steel") + ")");
+          return presets().at(preset).values.at(entry);
+        }
+      try
+        {
+          std::size_t used = 0;
+          const double v   = std::stod(text, &used);
+          if (used != text.size())
+            throw std::invalid_argument(text);
+          return v;
+        }
+      catch (const std::exception &)
+        {
+          throw InputError("subsection 'plastic kinematic': entry '" + entry +
+                           "' = '" + text +
+                           "' is not a number (allowed: a number, or empty for "
+                           "the preset's value)");
+        }
+    };
+    auto positive = [&](const std::string &entry) {
+      const double v = value(entry);
+      if (!(v > 0))
+        throw InputError("subsection 'plastic kinematic': entry '" + entry +
+                         "' must be positive");
+      return v;
+    };
+
+    PlasticKinematicLaw l;
+    const double density = positive("Density");
+    const double youngs  = positive("Young's modulus");
+    const double poisson = value("Poisson's ratio");
+    if (poisson <= -1. || poisson >= 0.5)
+      throw InputError("subsection 'plastic kinematic': entry 'Poisson's ratio' = " +
+                       std::to_string(poisson) + " is outside -1 < nu < 0.5");
+    l.sigma_0        = positive("Yield stress");
+    const double Et  = value("Tangent modulus");
+    if (Et < 0 || Et >= youngs)
+      throw InputError("subsection 'plastic kinematic': entry 'Tangent modulus' "
+                       "must satisfy 0 <= E_t < E");
+    l.plastic_modulus = youngs * Et / (youngs - Et);
+    l.beta            = value("Hardening parameter beta");
+    if (l.beta < 0 || l.beta > 1)
+      throw InputError("subsection 'plastic kinematic': entry 'Hardening "
+                       "parameter beta' must lie in [0, 1]");
+    l.rate_effects = prm.get_bool("Strain rate effects");
+    if (l.rate_effects)
+      {
+        l.C = positive("Cowper-Symonds C");
+        l.p = positive("Cowper-Symonds p");
+      }
+    const bool erode = prm.get_bool("Erosion");
+    l.failure_strain = erode ? positive("Failure strain") : 0.;
+    set(density, youngs, poisson, l, erode);
+  }
+
+
+  void PlasticKinematic::set(const double               density,
+                             const double               youngs_modulus,
+                             const double               poissons_ratio,
+                             const PlasticKinematicLaw &l,
+                             const bool                 erode)
+  {
+    rho     = density;
+    E       = youngs_modulus;
+    nu      = poissons_ratio;
+    lambda  = E * nu / ((1. + nu) * (1. - 2. * nu));
+    mu      = E / (2. * (1. + nu));
+    law     = l;
+    erosion = erode && l.failure_strain > 0;
+  }
+
+
+  void PlasticKinematic::rotate_history(const double w01,
+                                        const double w12,
+                                        const double w02,
+                                        const double dt,
+                                        double      *history) const
+  {
+    Kinematics::rotate_stress(w01, w12, w02, dt, history);
+  }
+
+
+  // @sect3{The 3D radial return}
+  //
+  // Trial stress sigma* = sigma + (lambda tr(D) I + 2 mu D) dt; relative
+  // deviator xi = dev(sigma*) - alpha; q = sqrt(3/2 xi:xi). Plastic flow
+  // along n = xi / |xi| with the increment of PlasticKinematicLaw:
+  //   sigma = sigma* - 2 mu sqrt(3/2) dep n,
+  //   alpha += sqrt(2/3) (1 - beta) E_p dep n,
+  // which puts the relative stress exactly on the updated yield surface
+  // (linear hardening: the return is exact, no iteration).
+  void PlasticKinematic::update_cauchy_stress(const double *D,
+                                              const double  dt,
+                                              double       *s,
+                                              double       *h) const
+  {
+    const double tr = D[0] + D[1] + D[2];
+    for (unsigned int k = 0; k < 3; ++k)
+      s[k] += (lambda * tr + 2. * mu * D[k]) * dt;
+    for (unsigned int k = 3; k < 6; ++k)
+      s[k] += 2. * mu * D[k] * dt;
+
+    double R = 1.;
+    if (law.rate_effects)
+      {
+        const double d3 = tr / 3.;
+        const double dd = (D[0] - d3) * (D[0] - d3) + (D[1] - d3) * (D[1] - d3) +
+                          (D[2] - d3) * (D[2] - d3) +
+                          2. * (D[3] * D[3] + D[4] * D[4] + D[5] * D[5]);
+        h[8] = std::sqrt(2. / 3. * dd);
+        R    = law.rate_factor(h[8]);
+      }
+
+    const double p = (s[0] + s[1] + s[2]) / 3.;
+    double       xi[6];
+    for (unsigned int k = 0; k < 6; ++k)
+      xi[k] = s[k] - (k < 3 ? p : 0.) - h[k];
+    const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
+                      2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
+    const double q   = std::sqrt(1.5 * xx);
+    const double dep = law.plastic_increment(q, h[6], R, 3. * mu);
+    if (dep == 0.)
+      return;
+    const double norm = std::sqrt(xx);
+    const double a    = 2. * mu * std::sqrt(1.5) * dep / norm;
+    const double b    = std::sqrt(2. / 3.) * law.kinematic_modulus() * dep / norm;
+    double       work = 0;
+    for (unsigned int k = 0; k < 6; ++k)
+      {
+        s[k] -= a * xi[k];
+        h[k] += b * xi[k];
+        // Plastic work sigma : d eps_p with d eps_p = sqrt(3/2) dep n.
+        work += (k < 3 ? 1. : 2.) * s[k] * std::sqrt(1.5) * dep * xi[k] / norm;
+      }
+    h[6] += dep;
+    h[7] += work;
+  }
+
+
+  // @sect3{Total Lagrangian: the same update on the reference mesh}
+  void PlasticKinematic::compute_pk2_stress(const double *F,
+                                            const double *E,
+                                            double       *S,
+                                            double       *history) const
+  {
+    update_pk2_stress(F, E, 0., S, history);
+  }
+
+
+  void PlasticKinematic::update_pk2_stress(const double *F,
+                                            const double *,
+                                            const double dt,
+                                            double      *S,
+                                            double      *h) const
+  {
+    using Kinematics::congruence;
+    using Kinematics::determinant;
+    using Kinematics::invert;
+    double *Fold_minus_I = h + 9;
+    double  Fold[9];
+    for (unsigned int k = 0; k < 9; ++k)
+      Fold[k] = Fold_minus_I[k] + (k % 4 == 0 ? 1. : 0.);
+    if (dt > 0)
+      {
+        // Cauchy stress of the previous step, sigma = F S F^T / J.
+        double sigma[6];
+        congruence(Fold, S, determinant(Fold), sigma);
+        // L dt = (F - F_old) F_mid^-1 (the mid-step velocity gradient).
+        double Fmid[9], Fmi[9], dF[9], Ldt[9];
+        for (unsigned int k = 0; k < 9; ++k)
+          {
+            Fmid[k] = 0.5 * (F[k] + Fold[k]);
+            dF[k]   = F[k] - Fold[k];
+          }
+        invert(Fmid, Fmi);
+        Kinematics::multiply(dF, Fmi, Ldt);
+        const double w01 = 0.5 * (Ldt[1] - Ldt[3]);
+        const double w12 = 0.5 * (Ldt[5] - Ldt[7]);
+        const double w02 = 0.5 * (Ldt[2] - Ldt[6]);
+        Kinematics::rotate_stress(w01, w12, w02, 1., sigma);
+        Kinematics::rotate_stress(w01, w12, w02, 1., h);
+        const double D[6] = {Ldt[0] / dt,
+                             Ldt[4] / dt,
+                             Ldt[8] / dt,
+                             0.5 * (Ldt[1] + Ldt[3]) / dt,
+                             0.5 * (Ldt[5] + Ldt[7]) / dt,
+                             0.5 * (Ldt[2] + Ldt[6]) / dt};
+        update_cauchy_stress(D, dt, sigma, h);
+        // S = J F^-1 sigma F^-T.
+        double Fi[9];
+        invert(F, Fi);
+        congruence(Fi, sigma, 1. / determinant(F), S);
+      }
+    for (unsigned int k = 0; k < 9; ++k)
+      Fold_minus_I[k] = F[k] - (k % 4 == 0 ? 1. : 0.);
+  }
+
+
+  // @sect3{The uniaxial form}
+  //
+  // History: back stress (axial), effective plastic strain, plastic work
+  // density. The same law with E in place of 3G.
+  double PlasticKinematic::update_uniaxial_stress(const double d_eps,
+                                                  const double dt,
+                                                  const double stress,
+                                                  double      *h) const
+  {
+    const double s_trial = stress + E * d_eps;
+    const double R       = law.rate_effects && dt > 0 ? law.rate_factor(std::abs(d_eps) / dt) : 1.;
+    const double xi      = s_trial - h[0];
+    const double dep     = law.plastic_increment(std::abs(xi), h[1], R, E);
+    if (dep == 0.)
+      return s_trial;
+    const double sign = xi > 0 ? 1. : -1.;
+    const double s    = s_trial - E * dep * sign;
+    h[0] += law.kinematic_modulus() * dep * sign;
+    h[1] += dep;
+    h[2] += s * dep * sign;
+    return s;
+  }
+
+
+  ANVIL_REGISTER_MATERIAL_MODEL(
+    PlasticKinematic,
+    "plastic kinematic",
+    "bilinear steel with mixed kinematic-isotropic hardening, "
+    "Cowper-Symonds rate effects and failure (seed Eq. (63); LS-DYNA "
+    "*MAT_PLASTIC_KINEMATIC).")
+} // namespace anvil::MaterialModel
