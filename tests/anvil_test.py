@@ -89,10 +89,17 @@ def write_scene(path, include=None, text=""):
 
 
 def read_csv(path):
-    """Columns of a CSV file as a dict of float lists."""
+    """Columns of a CSV file as a dict of lists: floats, or strings for
+    columns that are not numbers (names)."""
     with open(path) as f:
         rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0].keys()}
+
+    def column(k):
+        try:
+            return [float(r[k]) for r in rows]
+        except ValueError:
+            return [r[k] for r in rows]
+    return {k: column(k) for k in rows[0].keys()}
 
 
 def max_relative_difference(a, b):
