@@ -142,6 +142,17 @@ namespace anvil::MaterialModel
     S[5]              = a * Ci02;
   }
 
+  void Rigid::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    Elastic::declare_parameters(prm);
+  }
+
+  ANVIL_REGISTER_MATERIAL_MODEL(
+    Rigid,
+    "rigid",
+    "a rigid body of prescribed motion (its 'Initial velocity', constant; "
+    "zero: a fixed wall); elastic constants only for the penalty stiffness "
+    "of its faces (seed Eq. (59)).")
   ANVIL_REGISTER_MATERIAL_MODEL(
     Elastic,
     "elastic",

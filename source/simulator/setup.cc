@@ -223,6 +223,16 @@ namespace anvil
   {
     std::map<types::global_dof_index, double> prescribed;
     std::vector<unsigned int>                 matched(boundary_conditions.size(), 0);
+    // Every node of a rigid body moves with the body's velocity.
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && bodies[cell->material_id()].material->is_rigid())
+        for (unsigned int v = 0; v < 8; ++v)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              const auto dof = cell->vertex_dof_index(v, c);
+              if (dof_handler.locally_owned_dofs().is_element(dof))
+                prescribed[dof] = bodies[cell->material_id()].initial_velocity[c];
+            }
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (unsigned int v = 0; v < 8; ++v)

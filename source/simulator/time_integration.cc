@@ -47,8 +47,11 @@ namespace anvil
     std::vector<double>        eroded_info;
     for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
-        auto      &group = element_groups[g];
-        const auto r     = group.compute_internal_forces(x, v, dt_previous, f);
+        auto &group = element_groups[g];
+        // A rigid body's elements carry no force and do not limit the step.
+        if (group.get_material().is_rigid())
+          continue;
+        const auto r = group.compute_internal_forces(x, v, dt_previous, f);
         dt_crit          = std::min(dt_crit, r.critical_time_step);
         d_int += r.internal_energy_increment;
         d_hg += r.hourglass_energy_increment;

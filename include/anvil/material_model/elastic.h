@@ -94,4 +94,24 @@ namespace anvil::MaterialModel
                             double       *S,
                             double       *history) const override;
   };
+
+
+  /**
+   * A rigid body (seed section 5.2: the impactor "is rigid"). Its elements
+   * carry no force and its nodes move with the body's 'Initial velocity'
+   * for the whole run: a fixed or moving rigid wall or impactor of
+   * prescribed motion. Young's modulus and Poisson's ratio serve only the
+   * penalty stiffness of its faces (seed Eq. (59)); give the struck body's.
+   * (Free rigid-body dynamics driven by contact forces is a separate
+   * capability.)
+   */
+  class Rigid : public Elastic
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    bool        is_rigid() const override
+    {
+      return true;
+    }
+  };
 } // namespace anvil::MaterialModel

@@ -105,6 +105,13 @@ namespace anvil
         return false;
       }
 
+      /** Whether a body of this material is rigid: it gets no element
+          forces, and its nodes follow its prescribed rigid motion. */
+      virtual bool is_rigid() const
+      {
+        return false;
+      }
+
       /** Whether this model can be used with formulation @p f. */
       virtual bool supports(const Formulation f) const = 0;
 
