@@ -5,8 +5,13 @@
  * 13 distorted elements (one full batch of 8 and a padded one of 5) in a
  * non-uniform velocity field, 50 steps with rotation and stretch, for each
  * hourglass control: stresses, nodal forces, energies and the stable time
- * step must agree to round-off (1e-12 relative).
+ * step must agree to round-off (1e-12 relative). Twice: elastic, and
+ * plastic-kinematic steel that yields within the 50 steps (mixed hardening,
+ * so the back stress rotates; rate effects on), which runs the per-point
+ * batch update and the padded lanes' scratch history.
  */
+#include <anvil/material_model/plastic_kinematic.h>
+
 #include "unit_test.h"
 
 using namespace anvil;
@@ -14,12 +19,25 @@ using test::check_below;
 
 int main()
 {
-  MaterialModel::Elastic material;
-  material.set(7850., 2e11, 0.3);
+  MaterialModel::Elastic elastic;
+  elastic.set(7850., 2e11, 0.3);
+  MaterialModel::PlasticKinematic   plastic;
+  MaterialModel::PlasticKinematicLaw law;
+  law.sigma_0         = 1e7;
+  law.plastic_modulus = 1e9;
+  law.beta            = 0.5;
+  law.rate_effects    = true;
+  law.C               = 40;
+  law.p               = 5;
+  plastic.set(7850., 2e11, 0.3, law, false);
+  for (const MaterialModel::Interface *m : {static_cast<const MaterialModel::Interface *>(&elastic),
+                                            static_cast<const MaterialModel::Interface *>(&plastic)})
   for (const auto type : {Element::HourglassType::none, Element::HourglassType::viscous,
                           Element::HourglassType::stiffness})
     {
-      std::printf("== %s hourglass control\n", Element::to_string(type).c_str());
+      const auto &material = *m;
+      std::printf("== %s, %s hourglass control\n", m == &elastic ? "elastic" : "plastic kinematic",
+                  Element::to_string(type).c_str());
       test::Block block(13, 1, 1);
       for (unsigned int n = 0; n < block.n_nodes(); ++n)
         for (unsigned int d = 0; d < 3; ++d)
@@ -60,6 +78,19 @@ int main()
           h_ref += r2.hourglass_energy_increment;
           for (unsigned int i = 0; i < x.size(); ++i)
             x[i] += dt * v[i];
+        }
+      if (m == &plastic)
+        {
+          double eps_p = 0;
+          for (unsigned int e = 0; e < ref.n_elements(); ++e)
+            eps_p = std::max(eps_p, ref.history_variables(e, 0)[6]);
+          check_below("the plastic run yields: -(largest effective plastic strain)", -eps_p, -1e-8);
+          double worst_h = 0;
+          for (unsigned int e = 0; e < ref.n_elements(); ++e)
+            for (unsigned int k = 0; k < 9; ++k)
+              worst_h = std::max(worst_h, std::abs(fast.history_variables(e, 0)[k] - ref.history_variables(e, 0)[k]) /
+                                            (std::abs(ref.history_variables(e, 0)[k]) + 1e-30 + (k < 6 ? 1e3 : 0.)));
+          check_below("history variables, largest relative difference", worst_h, 1e-10);
         }
       worst_e = std::max(std::abs(e_fast - e_ref) / std::abs(e_ref), type == Element::HourglassType::none ? 0. : std::abs(h_fast - h_ref) / std::abs(h_ref));
       check_below("largest nodal force difference / largest force", worst_f, 1e-12);
