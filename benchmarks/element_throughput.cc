@@ -13,6 +13,7 @@
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/elastic.h>
+#include <anvil/material_model/plastic_kinematic.h>
 
 #include <sys/resource.h>
 
@@ -36,10 +37,24 @@ namespace
              const unsigned int             cycles,
              const Element::Integration     integration,
              const Element::HourglassType   hourglass = Element::HourglassType::viscous,
-             const Formulation              formulation = Formulation::updated_lagrangian)
+             const Formulation              formulation = Formulation::updated_lagrangian,
+             const bool                     steel       = false,
+             const bool                     rate        = false)
   {
-    MaterialModel::Elastic material;
-    material.set(7850., 2.06e11, 0.3);
+    // Elastic, or the seed's Table 1 steel with a yield stress low enough
+    // that the block flows plastically from the first cycles.
+    MaterialModel::Elastic          elastic;
+    MaterialModel::PlasticKinematic plastic;
+    elastic.set(7850., 2.06e11, 0.3);
+    MaterialModel::PlasticKinematicLaw law;
+    law.sigma_0         = 1e5;
+    law.plastic_modulus = 206e9 * 1.2e9 / (206e9 - 1.2e9);
+    law.rate_effects    = rate;
+    law.C               = 40;
+    law.p               = 5;
+    plastic.set(7850., 2.06e11, 0.3, law, false);
+    const MaterialModel::Interface &material =
+      steel ? static_cast<const MaterialModel::Interface &>(plastic) : elastic;
     Element::ElementGroup group(material, formulation, integration, hourglass, 0.1);
     const unsigned int    nn = n + 1;
     const double          h  = 1e-2;
@@ -111,6 +126,10 @@ int main(int argc, char **argv)
   const Result stiff = run(n, cycles, Element::Integration::one_point, Element::HourglassType::stiffness);
   const Result tl    = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                            Formulation::total_lagrangian);
+  const Result pk   = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+                           Formulation::updated_lagrangian, true, false);
+  const Result pkr  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+                           Formulation::updated_lagrangian, true, true);
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   const double peak = usage.ru_maxrss * 1024.;
@@ -122,6 +141,10 @@ int main(int argc, char **argv)
   std::printf("one-point without hourglass control: %.1f ns; stiffness hourglass control: %.1f ns; "
               "total Lagrangian (viscous): %.1f ns per element-cycle\n",
               none.ns_per_element_cycle, stiff.ns_per_element_cycle, tl.ns_per_element_cycle);
+  std::printf("one-point, plastic-kinematic steel (yielding): %.1f ns per element-cycle; with "
+              "Cowper-Symonds rate effects: %.1f ns; steel / elastic: %.2f\n",
+              pk.ns_per_element_cycle, pkr.ns_per_element_cycle,
+              pk.ns_per_element_cycle / one.ns_per_element_cycle);
   std::printf("memory: %.0f bytes per element (one-point solver state incl. nodal vectors; full: %.0f)\n",
               one.state_bytes_per_element, full.state_bytes_per_element);
   std::printf("peak resident memory: %.0f bytes per element (process peak / elements, largest run)\n",

@@ -41,6 +41,22 @@ cases = [
     ("missing_mesh", dict(mesh="    set Source = file\n    set File name = no_such_mesh.msh", nu="0.3", extra=""), 2,
      ["missing_mesh.prm", "no_such_mesh.msh", "cannot be opened"]),
 ]
+plastic = """  subsection Material
+    set Model = plastic kinematic
+    subsection plastic kinematic
+      {entries}
+    end
+  end"""
+cases += [
+    ("preset_not_number", dict(mesh="", nu="0.3", extra=plastic.format(
+        entries="set Preset = Table 1 steel\n      set Yield stress = 335 MPa")), 2,
+     ["preset_not_number.prm", "Yield stress", "not a number"]),
+    ("no_preset", dict(mesh="", nu="0.3", extra=plastic.format(entries="set Density = 7850")), 2,
+     ["no_preset.prm", "Young's modulus", "Preset"]),
+    ("tangent_modulus", dict(mesh="", nu="0.3", extra=plastic.format(
+        entries="set Preset = Table 1 steel\n      set Tangent modulus = 3e11")), 2,
+     ["tangent_modulus.prm", "Tangent modulus", "E_t < E"]),
+]
 for name, fields, status, words in cases:
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=block.format(**fields))
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
