@@ -74,6 +74,31 @@ namespace anvil::Contact
                       "f in the penalty stiffness k = f K A^2 / V (seed "
                       "Eq. (59)); values above 0.4 may need a smaller time "
                       "step. Units: none.");
+    prm.declare_entry("Static friction coefficient",
+                      "0",
+                      Patterns::Double(0.),
+                      "mu_s of seed Eq. (62); 0 together with the dynamic "
+                      "coefficient: frictionless. Units: none.");
+    prm.declare_entry("Dynamic friction coefficient",
+                      "0",
+                      Patterns::Double(0.),
+                      "mu_d of seed Eq. (62). Units: none.");
+    prm.declare_entry("Friction decay coefficient",
+                      "0",
+                      Patterns::Double(0.),
+                      "C of seed Eq. (62), mu = mu_d + (mu_s - mu_d) "
+                      "exp(-C |v|) with |v| the slip rate. Units: s/m.");
+    prm.declare_entry("Normal damping",
+                      "0",
+                      Patterns::Double(0., 1.),
+                      "Viscous damping of the normal penalty springs as a "
+                      "fraction of critical, 2 sqrt(k m) with m the slave "
+                      "node's mass (LS-DYNA's VDC; 0.1-0.2 settles bodies "
+                      "resting on each other). The normal force never turns "
+                      "tensile; the dissipated energy goes to the friction "
+                      "column. Damping lowers the stable time step by the factor "
+                      "sqrt(1 + xi^2) - xi (0.82 at xi = 0.2): lower 'Time "
+                      "step safety factor' with it. Units: none.");
     prm.declare_entry("Symmetric",
                       "true",
                       Patterns::Bool(),
@@ -91,6 +116,15 @@ namespace anvil::Contact
     second_body    = prm.get("Second body");
     penalty_factor = prm.get_double("Penalty scale factor");
     symmetric      = prm.get_bool("Symmetric");
+    static_friction  = prm.get_double("Static friction coefficient");
+    dynamic_friction = prm.get_double("Dynamic friction coefficient");
+    friction_decay   = prm.get_double("Friction decay coefficient");
+    normal_damping   = prm.get_double("Normal damping");
+    if (static_friction < dynamic_friction)
+      throw InputError("subsection 'Contact pair " + name +
+                       "': 'Static friction coefficient' (" + std::to_string(static_friction) +
+                       ") must not be below 'Dynamic friction coefficient' (" +
+                       std::to_string(dynamic_friction) + ")");
     if (first_body.empty() || second_body.empty())
       throw InputError("subsection 'Contact pair " + name +
                        "': 'First body' and 'Second body' are required");
@@ -165,6 +199,7 @@ namespace anvil::Contact
         for (unsigned int i = 0; i < dofs.size(); ++i)
           if (!surf.node_segments[i].empty())
             surf.nodes.push_back(i);
+        tangential_force[s].assign(has_friction() ? 3 * dofs.size() : 0, 0.);
       }
   }
 
@@ -179,14 +214,16 @@ namespace anvil::Contact
 
 
   ContactResult PenaltyContact::compute_forces(const std::vector<double> &x,
-                                               std::vector<double> &f) const
+                                               const std::vector<double> &v,
+                                               const double               dt,
+                                               std::vector<double>       &f)
   {
     ContactResult result;
     // Pass 1: the second body's nodes against the first body's segments.
-    pass(surface[1], surface[0], x, f, false, result);
+    pass(surface[1], surface[0], x, v, dt, f, false, tangential_force[1], result);
     // Pass 2 (symmetric): the first body's nodes against the second's.
     if (symmetric)
-      pass(surface[0], surface[1], x, f, true, result);
+      pass(surface[0], surface[1], x, v, dt, f, true, tangential_force[0], result);
     return result;
   }
 
@@ -194,10 +231,21 @@ namespace anvil::Contact
   void PenaltyContact::pass(const Surface             &slave,
                             const Surface             &master,
                             const std::vector<double> &x,
+                            const std::vector<double> &v,
+                            const double               dt,
                             std::vector<double>       &f,
                             const bool                 slave_is_first,
+                            std::vector<double>       &ft,
                             ContactResult             &result) const
   {
+    const bool friction = has_friction();
+    // Friction forces of nodes that leave contact this step are released.
+    std::vector<double> ft_old;
+    if (friction)
+      {
+        ft_old = ft;
+        std::fill(ft.begin(), ft.end(), 0.);
+      }
     auto pos = [&](const unsigned int i) -> Vec {
       return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     };
@@ -379,7 +427,24 @@ namespace anvil::Contact
 
         // @sect4{Step (5): normal force, seed Eqs. (58)-(60)}
         const double k  = penalty_factor * master.stiffness[chosen];
-        const Vec    fs = (-l * k) * nn;
+        Vec          vr = {0, 0, 0};
+        if (friction && dt > 0)
+          {
+            vr = {v[3 * s], v[3 * s + 1], v[3 * s + 2]};
+            for (unsigned int j = 0; j < 4; ++j)
+              vr = vr - phi[j] * Vec{v[3 * n[j]], v[3 * n[j] + 1], v[3 * n[j] + 2]};
+          }
+        double fn = -l * k;
+        if (normal_damping > 0 && dt > 0 && !node_mass.empty())
+          {
+            // Damping on the normal relative velocity, never pulling.
+            const double c  = 2. * normal_damping * std::sqrt(k * node_mass[s]);
+            const double vn = dot(vr, nn);
+            const double fd = std::max(-c * vn, -fn);
+            fn += fd;
+            result.friction_work -= fd * vn * dt;
+          }
+        const Vec fs = fn * nn;
         f[3 * s] += fs.x;
         f[3 * s + 1] += fs.y;
         f[3 * s + 2] += fs.z;
@@ -389,6 +454,55 @@ namespace anvil::Contact
             f[3 * n[j] + 1] -= phi[j] * fs.y;
             f[3 * n[j] + 2] -= phi[j] * fs.z;
           }
+        // @sect4{Step (6): Coulomb friction, seed Eqs. (61)-(62)}
+        // The trial tangential force F* = F^n - k delta, with delta the
+        // tangential slip of the slave node over the contact point during
+        // the last step, (v_s - sum phi_j v_j) dt projected on the segment
+        // plane; the previous force is first projected on the current
+        // plane. F* is returned to the Coulomb cone mu |f_n| (Eq. (61)),
+        // mu = mu_d + (mu_s - mu_d) exp(-C |slip rate|) (Eq. (62)). The work
+        // of the friction force over the slip, by the trapezoidal rule like
+        // every other work in Anvil, goes to the friction energy.
+        if (friction && dt > 0 && (static_friction > 0 || dynamic_friction > 0))
+          {
+            const Vec    slip  = dt * (vr - dot(vr, nn) * nn);
+            Vec          f_old = {ft_old[3 * s], ft_old[3 * s + 1], ft_old[3 * s + 2]};
+            f_old              = f_old - dot(f_old, nn) * nn;
+            Vec          trial = f_old - k * slip;
+            // V in Eq. (62) is the sliding velocity, zero while the node
+            // sticks: the static coefficient decides stick or slip, and a
+            // sliding node is returned to mu(V) |f_n| with V its slip rate.
+            // (Taking the trial slip rate also in stick would let the elastic
+            // vibration of a resting body lower mu below mu_s.)
+            const double t = norm(trial);
+            if (t > static_friction * fn)
+              {
+                const double rate  = norm(slip) / dt;
+                const double mu    = dynamic_friction + (static_friction - dynamic_friction) *
+                                                       std::exp(-friction_decay * rate);
+                const double limit = mu * fn;
+                if (t > limit)
+                  trial = (limit / t) * trial;
+              }
+            ft[3 * s]     = trial.x;
+            ft[3 * s + 1] = trial.y;
+            ft[3 * s + 2] = trial.z;
+            result.friction_work -= 0.5 * dot(f_old + trial, slip);
+            f[3 * s] += trial.x;
+            f[3 * s + 1] += trial.y;
+            f[3 * s + 2] += trial.z;
+            for (unsigned int j = 0; j < 4; ++j)
+              {
+                f[3 * n[j]] -= phi[j] * trial.x;
+                f[3 * n[j] + 1] -= phi[j] * trial.y;
+                f[3 * n[j] + 2] -= phi[j] * trial.z;
+              }
+            const double sg = slave_is_first ? 1. : -1.;
+            result.friction_on_first[0] += sg * trial.x;
+            result.friction_on_first[1] += sg * trial.y;
+            result.friction_on_first[2] += sg * trial.z;
+          }
+
         const double sign = slave_is_first ? 1. : -1.;
         result.force_on_first[0] += sign * fs.x;
         result.force_on_first[1] += sign * fs.y;

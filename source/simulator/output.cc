@@ -76,7 +76,8 @@ namespace anvil
           {
             contact_files.emplace_back(output_directory + "/contact_" + c.name + ".csv");
             contact_files.back()
-              << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration\n";
+              << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration,"
+                 "friction_force_x,friction_force_y,friction_force_z\n";
           }
       }
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
@@ -117,7 +118,8 @@ namespace anvil
         const auto &r = contact_results[c];
         contact_files[c] << std::setprecision(12) << t << ',' << r.force_on_first[0]
                          << ',' << r.force_on_first[1] << ',' << r.force_on_first[2]
-                         << ',' << r.max_penetration << '\n';
+                         << ',' << r.max_penetration << ',' << r.friction_on_first[0] << ','
+                         << r.friction_on_first[1] << ',' << r.friction_on_first[2] << '\n';
       }
     if (step_number % 100 == 0)
       {

@@ -102,11 +102,17 @@ namespace anvil
                         Patterns::Double(0.),
                         "Time between rows of the CSV histories; 0 writes "
                         "every step. Units: s.");
+      prm.declare_entry("Gravity",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Gravitational acceleration, applied to every "
+                        "deformable body as the body force rho g; its work "
+                        "is part of external_work. Units: m/s^2.");
       prm.declare_entry("Energy balance tolerance",
                         "0.05",
                         Patterns::Double(0.),
                         "The run stops when the total energy has grown by "
-                        "more than this fraction of max(E_kin, E_int, E_0) "
+                        "more than this fraction of max(E_kin, E_int, E_0, |W_ext|) "
                         "beyond the external work. Units: none.");
       prm.declare_entry("Print wall times",
                         "true",
@@ -218,6 +224,11 @@ namespace anvil
         output_interval  = prm.get_double("Output interval");
         history_interval = prm.get_double("History interval");
         energy_tolerance = prm.get_double("Energy balance tolerance");
+        {
+          const auto g = dealii::Utilities::split_string_list(prm.get("Gravity"));
+          for (unsigned int d = 0; d < 3; ++d)
+            gravity[d] = dealii::Utilities::string_to_double(g[d]);
+        }
         print_wall_times = prm.get_bool("Print wall times");
         prm.leave_subsection();
         if (time_step_factor <= 0)

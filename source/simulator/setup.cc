@@ -286,6 +286,7 @@ namespace anvil
     const unsigned int n_pairs = contact_pairs.size();
     contact_local_index.assign(n_pairs, {});
     contact_positions.assign(n_pairs, {});
+    contact_velocities.assign(n_pairs, {});
     contact_forces.assign(n_pairs, {});
     contact_results.assign(n_pairs, {});
     auto body_index = [&](const std::string &name) {
@@ -354,7 +355,18 @@ namespace anvil
             dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
               long(position.get_partitioner()->global_to_local(dofs[i])) :
               -1;
+        if (contact_pairs[p].has_friction())
+          {
+            std::vector<double> m(dofs.size(), 0.);
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              if (contact_local_index[p][i] >= 0)
+                m[i] = mass.local_element(contact_local_index[p][i]);
+            Utilities::MPI::sum(m, mpi_communicator, m);
+            contact_pairs[p].set_node_masses(m);
+          }
         contact_positions[p].resize(3 * dofs.size());
+        if (contact_pairs[p].has_friction())
+          contact_velocities[p].resize(3 * dofs.size());
         contact_forces[p].resize(3 * dofs.size());
       }
   }

@@ -30,6 +30,10 @@ namespace anvil
               force.begin() + force.locally_owned_size() +
                 force.get_partitioner()->n_ghost_indices(),
               0.);
+    // Gravity: the lumped body force m_I g on every owned dof.
+    if (gravity.norm() > 0)
+      for (unsigned int i = 0; i < force.locally_owned_size(); ++i)
+        force.local_element(i) = mass.local_element(i) * gravity[dof_component[i]];
   }
 
 
@@ -138,7 +142,7 @@ namespace anvil
   //
   // Positions of each pair's nodes are gathered to every rank, every rank
   // evaluates the pair, and each keeps the forces on the nodes it owns.
-  void Simulator::apply_contact()
+  void Simulator::apply_contact(const double dt_previous)
   {
     if (contact_pairs.empty())
       return;
@@ -146,16 +150,26 @@ namespace anvil
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
       {
         auto &xs = contact_positions[p];
+        auto &vs = contact_velocities[p];
         auto &fs = contact_forces[p];
         std::fill(xs.begin(), xs.end(), 0.);
+        std::fill(vs.begin(), vs.end(), 0.);
         std::fill(fs.begin(), fs.end(), 0.);
         const auto &index = contact_local_index[p];
         for (unsigned int i = 0; i < index.size(); ++i)
           if (index[i] >= 0)
             for (unsigned int d = 0; d < 3; ++d)
-              xs[3 * i + d] = position.local_element(index[i] + d);
+              {
+                xs[3 * i + d] = position.local_element(index[i] + d);
+                if (!vs.empty())
+                  vs[3 * i + d] = velocity.local_element(index[i] + d);
+              }
         Utilities::MPI::sum(xs, mpi_communicator, xs);
-        contact_results[p] = contact_pairs[p].compute_forces(xs, fs);
+        if (!vs.empty())
+          Utilities::MPI::sum(vs, mpi_communicator, vs);
+        contact_results[p] = contact_pairs[p].compute_forces(xs, vs, dt_previous, fs);
+        // Replicated evaluation: every rank has the same friction work.
+        energies.friction += contact_results[p].friction_work;
         for (unsigned int i = 0; i < index.size(); ++i)
           if (index[i] >= 0)
             for (unsigned int d = 0; d < 3; ++d)
@@ -212,10 +226,23 @@ namespace anvil
     const double      *v = velocity.begin();
     for (unsigned int i = 0; i < n; ++i)
       x[i] += dt * v[i];
+    // Work of gravity over the step, m g . (x^{n+1} - x^n): exact for a
+    // constant force.
+    if (gravity.norm() > 0)
+      {
+        double work = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          work += mass.local_element(i) * gravity[dof_component[i]] * dt * v[i];
+        energies.external_work += Utilities::MPI::sum(work, mpi_communicator);
+      }
   }
 
 
   // @sect3{Health checks}
+  //
+  // The balance error is |E_total - E_0 - W_ext| / max(E_kin, E_int, E_0,
+  // |W_ext|): the external work belongs in the scale for scenes that start
+  // at rest and are loaded by gravity or boundary motion, where E_0 = 0.
   //
   // A numerical failure stops the run with a message naming the time, the
   // step, the element and its position, after writing the last good state.
@@ -227,7 +254,8 @@ namespace anvil
       problem = "element " + std::to_string(inverted) + " is inverted (Jacobian <= 0)";
     const double e_total = energies.total();
     const double scale =
-      std::max({std::abs(energies.kinetic), std::abs(energies.internal), std::abs(initial_energy), 1e-300});
+      std::max({std::abs(energies.kinetic), std::abs(energies.internal), std::abs(initial_energy),
+                std::abs(energies.external_work), 1e-300});
     balance_error = std::abs(e_total - initial_energy - energies.external_work) / scale;
     if (problem.empty() && !std::isfinite(e_total))
       problem = "the energies are not finite (NaN or infinity)";
@@ -243,7 +271,7 @@ namespace anvil
       {
         std::ostringstream s;
         s << "the total energy grew by " << 100. * balance_error
-          << " % of max(E_kin, E_int, E_0) beyond the external work (limit "
+          << " % of max(E_kin, E_int, E_0, |W_ext|) beyond the external work (limit "
           << 100. * energy_tolerance
           << " %, 'Energy balance tolerance'); the explicit step is unstable "
              "(time step safety factor "
@@ -255,7 +283,7 @@ namespace anvil
         std::ostringstream s;
         s << "; the explicit step is unstable: the total energy had grown for " << growth_steps
           << " steps to " << 100. * balance_error
-          << " % of max(E_kin, E_int, E_0) beyond the external work (time step safety factor "
+          << " % of max(E_kin, E_int, E_0, |W_ext|) beyond the external work (time step safety factor "
           << time_step_factor << ")";
         problem += s.str();
       }
@@ -388,7 +416,7 @@ namespace anvil
     // Step 0: forces of the initial state (stress free), energy E_0.
     zero_forces();
     critical_dt = compute_internal_forces(0.);
-    apply_contact();
+    apply_contact(0.);
 
     double kinetic0 = 0;
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
@@ -455,7 +483,7 @@ namespace anvil
 
         zero_forces();
         critical_dt = compute_internal_forces(dt_previous);
-        apply_contact();
+        apply_contact(dt_previous);
 
         if (output_interval > 0 && time >= next_output - eps && time < end_time - eps)
           {

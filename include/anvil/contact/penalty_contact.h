@@ -59,6 +59,12 @@ namespace anvil::Contact
     double max_penetration = 0;
     /** Energy stored in the penalty springs, 1/2 k l^2. Units: J. */
     double energy = 0;
+    /** Work done this step against the friction forces (dissipated, or
+        stored in sticking tangential springs), >= 0 for sliding, and
+        dissipated by the normal damping. Units: J. */
+    double friction_work = 0;
+    /** Sum of the friction forces on the first body's nodes. Units: N. */
+    std::array<double, 3> friction_on_first = {{0, 0, 0}};
     /** Number of active slave nodes (both passes). */
     unsigned int n_active = 0;
   };
@@ -94,27 +100,57 @@ namespace anvil::Contact
 
     /**
      * Evaluate both passes at positions @p x (3 per pair node) and add the
-     * contact forces to @p f (3 per pair node).
+     * contact forces to @p f (3 per pair node). With friction, @p v are the
+     * velocities that brought the nodes to @p x over the step @p dt (the
+     * slip of the contact point is (v_slave - v_master) dt, tangential);
+     * the tangential forces are the pair's state from step to step.
      */
     ContactResult compute_forces(const std::vector<double> &x,
-                                 std::vector<double>       &f) const;
+                                 const std::vector<double> &v,
+                                 double                     dt,
+                                 std::vector<double>       &f);
+
+    /** Whether the pair needs velocities (friction or damping). */
+    bool has_friction() const
+    {
+      return static_friction > 0 || dynamic_friction > 0 || normal_damping > 0;
+    }
+
+    /** Lumped masses of the pair's nodes (for the normal damping). */
+    void set_node_masses(const std::vector<double> &masses)
+    {
+      node_mass = masses;
+    }
 
     std::string  name;
     std::string  first_body, second_body;
     double       penalty_factor = 0.1;
     bool         symmetric      = true;
+    /** Coulomb friction, seed Eq. (62): mu = mu_d + (mu_s - mu_d)
+        exp(-C |v_slip|). */
+    double static_friction = 0, dynamic_friction = 0, friction_decay = 0;
+    /** Viscous damping of the normal penalty spring, as a fraction of its
+        critical damping 2 sqrt(k m_slave) (LS-DYNA's VDC). */
+    double normal_damping = 0;
 
   private:
     /** One pass: nodes of @p slave against segments of @p master. */
     void pass(const Surface             &slave,
               const Surface             &master,
               const std::vector<double> &x,
+              const std::vector<double> &v,
+              double                     dt,
               std::vector<double>       &f,
               bool                       slave_is_first,
+              std::vector<double>       &tangential_force,
               ContactResult             &result) const;
 
     std::vector<unsigned long> dofs;
     std::vector<bool>          on_first;
     Surface                    surface[2];
+    /** Per pass, the friction force (3 per pair node) of the last step;
+        zero for nodes not in contact. */
+    std::vector<double> tangential_force[2];
+    std::vector<double> node_mass;
   };
 } // namespace anvil::Contact

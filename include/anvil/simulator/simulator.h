@@ -108,7 +108,7 @@ namespace anvil
     void   run_scene();
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
-    void   apply_contact();
+    void   apply_contact(double dt_previous);
     void   record_erosion(unsigned int                      group_index,
                           const std::vector<unsigned long> &ids,
                           std::vector<double>              &info) const;
@@ -140,6 +140,8 @@ namespace anvil
     double      output_interval;
     double      history_interval;
     double      energy_tolerance;
+    /** Gravitational acceleration of the scene (body force rho g). */
+    dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
     bool        print_wall_times;
     unsigned int max_steps;
@@ -175,7 +177,7 @@ namespace anvil
     /** Per contact pair: local index of each pair node's x dof on this rank
         if owned, else -1; and the gather/scatter buffers. */
     std::vector<std::vector<long>>   contact_local_index;
-    std::vector<std::vector<double>> contact_positions, contact_forces;
+    std::vector<std::vector<double>> contact_positions, contact_velocities, contact_forces;
     std::vector<Contact::ContactResult> contact_results;
 
     // Energy bookkeeping
