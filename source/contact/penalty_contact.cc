@@ -444,16 +444,21 @@ namespace anvil::Contact
             fn += fd;
             result.friction_work -= fd * vn * dt;
           }
+        // A force on the slave node, its reaction on the master nodes by
+        // the segment's shape functions at the contact point (Eq. (60)).
+        auto apply = [&](const Vec &force) {
+          f[3 * s] += force.x;
+          f[3 * s + 1] += force.y;
+          f[3 * s + 2] += force.z;
+          for (unsigned int j = 0; j < 4; ++j)
+            {
+              f[3 * n[j]] -= phi[j] * force.x;
+              f[3 * n[j] + 1] -= phi[j] * force.y;
+              f[3 * n[j] + 2] -= phi[j] * force.z;
+            }
+        };
         const Vec fs = fn * nn;
-        f[3 * s] += fs.x;
-        f[3 * s + 1] += fs.y;
-        f[3 * s + 2] += fs.z;
-        for (unsigned int j = 0; j < 4; ++j)
-          {
-            f[3 * n[j]] -= phi[j] * fs.x;
-            f[3 * n[j] + 1] -= phi[j] * fs.y;
-            f[3 * n[j] + 2] -= phi[j] * fs.z;
-          }
+        apply(fs);
         // @sect4{Step (6): Coulomb friction, seed Eqs. (61)-(62)}
         // The trial tangential force F* = F^n - k delta, with delta the
         // tangential slip of the slave node over the contact point during
@@ -488,15 +493,7 @@ namespace anvil::Contact
             ft[3 * s + 1] = trial.y;
             ft[3 * s + 2] = trial.z;
             result.friction_work -= 0.5 * dot(f_old + trial, slip);
-            f[3 * s] += trial.x;
-            f[3 * s + 1] += trial.y;
-            f[3 * s + 2] += trial.z;
-            for (unsigned int j = 0; j < 4; ++j)
-              {
-                f[3 * n[j]] -= phi[j] * trial.x;
-                f[3 * n[j] + 1] -= phi[j] * trial.y;
-                f[3 * n[j] + 2] -= phi[j] * trial.z;
-              }
+            apply(trial);
             const double sg = slave_is_first ? 1. : -1.;
             result.friction_on_first[0] += sg * trial.x;
             result.friction_on_first[1] += sg * trial.y;
