@@ -58,6 +58,78 @@ namespace anvil::Contact
     // Natural coordinates of the cyclic segment nodes (seed Eq. (54)).
     constexpr double xi_n[4]  = {-1, 1, 1, -1};
     constexpr double eta_n[4] = {-1, -1, 1, 1};
+
+    /**
+     * Normal force (seed Eq. (58), with the optional normal damping) and
+     * Coulomb friction force (step (6), Eqs. (61)-(62)) on slave node @p s
+     * with penetration @p l < 0 along the unit normal @p nn, stiffness @p k
+     * and velocity @p vr relative to the surface. Returns the normal force;
+     * the friction force goes to @p friction. Updates the node's tangential
+     * state in @p ft and the friction work.
+     *
+     * Friction: the trial tangential force F* = F^n - k delta, with delta
+     * the tangential slip of the slave node over the contact point during
+     * the last step, vr dt projected on the tangent plane; the previous
+     * force is first projected on the current plane. F* is returned to the
+     * Coulomb cone mu f_n (Eq. (61)). V in Eq. (62) is the sliding velocity,
+     * zero while the node sticks: the static coefficient decides stick or
+     * slip, and a sliding node is returned to mu(V) f_n with V its slip
+     * rate. (Taking the trial slip rate also in stick would let the elastic
+     * vibration of a resting body lower mu below mu_s.) The work of the
+     * friction force over the slip, by the trapezoidal rule like every
+     * other work in Anvil, goes to the friction energy.
+     */
+    Vec interface_forces(const PenaltyContact      &pair,
+                         const unsigned int         s,
+                         const double               l,
+                         const Vec                 &nn,
+                         const double               k,
+                         const Vec                 &vr,
+                         const double               dt,
+                         const double               node_mass,
+                         const std::vector<double> &ft_old,
+                         std::vector<double>       &ft,
+                         ContactResult             &result,
+                         Vec                       &friction)
+    {
+      double fn = -l * k;
+      if (pair.normal_damping > 0 && dt > 0 && node_mass > 0)
+        {
+          // Damping on the normal relative velocity, never pulling.
+          const double c  = 2. * pair.normal_damping * std::sqrt(k * node_mass);
+          const double vn = dot(vr, nn);
+          const double fd = std::max(-c * vn, -fn);
+          fn += fd;
+          result.friction_work -= fd * vn * dt;
+        }
+      friction = {0, 0, 0};
+      if (dt > 0 && (pair.static_friction > 0 || pair.dynamic_friction > 0))
+        {
+          const Vec slip  = dt * (vr - dot(vr, nn) * nn);
+          Vec       f_old = {ft_old[3 * s], ft_old[3 * s + 1], ft_old[3 * s + 2]};
+          f_old           = f_old - dot(f_old, nn) * nn;
+          Vec          trial = f_old - k * slip;
+          const double t     = norm(trial);
+          if (t > pair.static_friction * fn)
+            {
+              const double rate  = norm(slip) / dt;
+              const double mu    = pair.dynamic_friction + (pair.static_friction - pair.dynamic_friction) *
+                                                            std::exp(-pair.friction_decay * rate);
+              const double limit = mu * fn;
+              if (t > limit)
+                trial = (limit / t) * trial;
+            }
+          ft[3 * s]     = trial.x;
+          ft[3 * s + 1] = trial.y;
+          ft[3 * s + 2] = trial.z;
+          result.friction_work -= 0.5 * dot(f_old + trial, slip);
+          friction = trial;
+        }
+      result.max_penetration = std::max(result.max_penetration, -l);
+      result.energy += 0.5 * k * l * l;
+      ++result.n_active;
+      return fn * nn;
+    }
   } // namespace
 
 
@@ -200,6 +272,16 @@ namespace anvil::Contact
           if (!surf.node_segments[i].empty())
             surf.nodes.push_back(i);
         tangential_force[s].assign(has_friction() ? 3 * dofs.size() : 0, 0.);
+        surf.node_stiffness.assign(dofs.size(), 0.);
+        surf.node_depth.assign(dofs.size(), 0.);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          {
+            for (const unsigned int k : surf.node_segments[i])
+              {
+                surf.node_stiffness[i] += surf.stiffness[k] / surf.node_segments[i].size();
+                surf.node_depth[i] += surf.depth[k] / surf.node_segments[i].size();
+              }
+          }
       }
   }
 
@@ -219,12 +301,84 @@ namespace anvil::Contact
                                                std::vector<double>       &f)
   {
     ContactResult result;
+    // A rigid body's analytic shape: the other body's nodes against it.
+    if (has_analytic(0) || has_analytic(1))
+      {
+        const unsigned int a = has_analytic(0) ? 0 : 1;
+        analytic_pass(surface[1 - a], analytic[a], x, v, dt, f, a == 1, tangential_force[1 - a], result);
+        return result;
+      }
     // Pass 1: the second body's nodes against the first body's segments.
     pass(surface[1], surface[0], x, v, dt, f, false, tangential_force[1], result);
     // Pass 2 (symmetric): the first body's nodes against the second's.
     if (symmetric)
       pass(surface[0], surface[1], x, v, dt, f, true, tangential_force[0], result);
     return result;
+  }
+
+
+  // @sect3{Contact with an analytic rigid shape}
+  //
+  // Exact geometry: the gap of each slave node is its signed distance from
+  // the sphere, cylinder or plane, the normal the shape's normal there; the
+  // stiffness is the slave side's (Eq. (59) with the slave element's K, A,
+  // V). The reactions act on the rigid body as a resultant force and a
+  // torque about its centre.
+  void PenaltyContact::analytic_pass(const Surface             &slave,
+                                     const AnalyticSurface     &a,
+                                     const std::vector<double> &x,
+                                     const std::vector<double> &v,
+                                     const double               dt,
+                                     std::vector<double>       &f,
+                                     const bool                 slave_is_first,
+                                     std::vector<double>       &ft,
+                                     ContactResult             &result) const
+  {
+    std::vector<double> ft_old;
+    if (has_friction())
+      {
+        ft_old = ft;
+        std::fill(ft.begin(), ft.end(), 0.);
+      }
+    for (const unsigned int s : slave.nodes)
+      {
+        bool on_surface = false;
+        for (const unsigned int k : slave.node_segments[s])
+          on_surface |= slave.active[k];
+        if (!on_surface)
+          continue;
+        const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
+        dealii::Tensor<1, 3>   normal;
+        const double l = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
+        if (!(l < 0) || -l > slave.node_depth[s])
+          continue;
+        const Vec    nn = {normal[0], normal[1], normal[2]};
+        const double k  = penalty_factor * slave.node_stiffness[s];
+        Vec          vr = {0, 0, 0};
+        if (has_friction() && dt > 0)
+          {
+            const dealii::Tensor<1, 3> vb =
+              a.velocity + cross_product_3d(a.angular_velocity, xs - a.centre);
+            vr = Vec{v[3 * s] - vb[0], v[3 * s + 1] - vb[1], v[3 * s + 2] - vb[2]};
+          }
+        Vec       ff;
+        const Vec fs = interface_forces(*this, s, l, nn, k, vr, dt,
+                                        node_mass.empty() ? 0. : node_mass[s], ft_old, ft, result, ff);
+        const Vec total = fs + ff;
+        f[3 * s] += total.x;
+        f[3 * s + 1] += total.y;
+        f[3 * s + 2] += total.z;
+        const dealii::Tensor<1, 3> t({total.x, total.y, total.z});
+        result.shape_force -= t;
+        result.shape_torque -= cross_product_3d(xs - l * normal - a.centre, t);
+        const double sign = slave_is_first ? 1. : -1.;
+        result.force_on_first[0] += sign * fs.x;
+        result.force_on_first[1] += sign * fs.y;
+        result.force_on_first[2] += sign * fs.z;
+        result.friction_on_first[0] += sign * ff.x;
+        result.friction_on_first[1] += sign * ff.y;
+        result.friction_on_first[2] += sign * ff.z;
+      }
   }
 
 
@@ -426,7 +580,9 @@ namespace anvil::Contact
           continue;
 
         // @sect4{Step (5): normal force, seed Eqs. (58)-(60)}
-        const double k  = penalty_factor * master.stiffness[chosen];
+        // Against a rigid surface the stiffness is the slave side's (the
+        // rigid body's own elements say nothing of the contact stiffness).
+        const double k  = penalty_factor * (master.rigid ? slave.node_stiffness[s] : master.stiffness[chosen]);
         Vec          vr = {0, 0, 0};
         if (friction && dt > 0)
           {
@@ -434,79 +590,30 @@ namespace anvil::Contact
             for (unsigned int j = 0; j < 4; ++j)
               vr = vr - phi[j] * Vec{v[3 * n[j]], v[3 * n[j] + 1], v[3 * n[j] + 2]};
           }
-        double fn = -l * k;
-        if (normal_damping > 0 && dt > 0 && !node_mass.empty())
-          {
-            // Damping on the normal relative velocity, never pulling.
-            const double c  = 2. * normal_damping * std::sqrt(k * node_mass[s]);
-            const double vn = dot(vr, nn);
-            const double fd = std::max(-c * vn, -fn);
-            fn += fd;
-            result.friction_work -= fd * vn * dt;
-          }
+        Vec       ff;
+        const Vec fs = interface_forces(*this, s, l, nn, k, vr, dt,
+                                        node_mass.empty() ? 0. : node_mass[s], ft_old, ft, result, ff);
         // A force on the slave node, its reaction on the master nodes by
         // the segment's shape functions at the contact point (Eq. (60)).
-        auto apply = [&](const Vec &force) {
-          f[3 * s] += force.x;
-          f[3 * s + 1] += force.y;
-          f[3 * s + 2] += force.z;
-          for (unsigned int j = 0; j < 4; ++j)
-            {
-              f[3 * n[j]] -= phi[j] * force.x;
-              f[3 * n[j] + 1] -= phi[j] * force.y;
-              f[3 * n[j] + 2] -= phi[j] * force.z;
-            }
-        };
-        const Vec fs = fn * nn;
-        apply(fs);
-        // @sect4{Step (6): Coulomb friction, seed Eqs. (61)-(62)}
-        // The trial tangential force F* = F^n - k delta, with delta the
-        // tangential slip of the slave node over the contact point during
-        // the last step, (v_s - sum phi_j v_j) dt projected on the segment
-        // plane; the previous force is first projected on the current
-        // plane. F* is returned to the Coulomb cone mu |f_n| (Eq. (61)),
-        // mu = mu_d + (mu_s - mu_d) exp(-C |slip rate|) (Eq. (62)). The work
-        // of the friction force over the slip, by the trapezoidal rule like
-        // every other work in Anvil, goes to the friction energy.
-        if (friction && dt > 0 && (static_friction > 0 || dynamic_friction > 0))
+        const Vec total = fs + ff;
+        f[3 * s] += total.x;
+        f[3 * s + 1] += total.y;
+        f[3 * s + 2] += total.z;
+        for (unsigned int j = 0; j < 4; ++j)
           {
-            const Vec    slip  = dt * (vr - dot(vr, nn) * nn);
-            Vec          f_old = {ft_old[3 * s], ft_old[3 * s + 1], ft_old[3 * s + 2]};
-            f_old              = f_old - dot(f_old, nn) * nn;
-            Vec          trial = f_old - k * slip;
-            // V in Eq. (62) is the sliding velocity, zero while the node
-            // sticks: the static coefficient decides stick or slip, and a
-            // sliding node is returned to mu(V) |f_n| with V its slip rate.
-            // (Taking the trial slip rate also in stick would let the elastic
-            // vibration of a resting body lower mu below mu_s.)
-            const double t = norm(trial);
-            if (t > static_friction * fn)
-              {
-                const double rate  = norm(slip) / dt;
-                const double mu    = dynamic_friction + (static_friction - dynamic_friction) *
-                                                       std::exp(-friction_decay * rate);
-                const double limit = mu * fn;
-                if (t > limit)
-                  trial = (limit / t) * trial;
-              }
-            ft[3 * s]     = trial.x;
-            ft[3 * s + 1] = trial.y;
-            ft[3 * s + 2] = trial.z;
-            result.friction_work -= 0.5 * dot(f_old + trial, slip);
-            apply(trial);
-            const double sg = slave_is_first ? 1. : -1.;
-            result.friction_on_first[0] += sg * trial.x;
-            result.friction_on_first[1] += sg * trial.y;
-            result.friction_on_first[2] += sg * trial.z;
+            f[3 * n[j]] -= phi[j] * total.x;
+            f[3 * n[j] + 1] -= phi[j] * total.y;
+            f[3 * n[j] + 2] -= phi[j] * total.z;
           }
+        const double sg = slave_is_first ? 1. : -1.;
+        result.friction_on_first[0] += sg * ff.x;
+        result.friction_on_first[1] += sg * ff.y;
+        result.friction_on_first[2] += sg * ff.z;
 
         const double sign = slave_is_first ? 1. : -1.;
         result.force_on_first[0] += sign * fs.x;
         result.force_on_first[1] += sign * fs.y;
         result.force_on_first[2] += sign * fs.z;
-        result.max_penetration = std::max(result.max_penetration, -l);
-        result.energy += 0.5 * k * l * l;
-        ++result.n_active;
       }
   }
 } // namespace anvil::Contact

@@ -125,8 +125,9 @@ namespace anvil
     prm.declare_entry("Initial velocity",
                       "0, 0, 0",
                       Patterns::List(Patterns::Double(), 3, 3),
-                      "Initial velocity of every node of the body. Units: "
-                      "m/s.");
+                      "Initial velocity of every node of the body (of the "
+                      "centre of mass of a rigid body). Units: m/s.");
+    RigidBody::Motion::declare_parameters(prm);
   }
 
 
@@ -202,6 +203,10 @@ namespace anvil
     prm.leave_subsection();
     initial_velocity =
       parse_vector(prm.get("Initial velocity"), "Initial velocity");
+    rigid.parse_parameters(prm, name);
+    if (!material->is_rigid() && rigid.shape.type != RigidBody::Shape::Type::mesh)
+      throw InputError("subsection 'Body " + name + "/Rigid body': a 'Contact shape' "
+                       "other than mesh needs the material 'rigid'");
   }
 
 

@@ -100,6 +100,28 @@ namespace anvil
           probe_files[p] << ',' << probe_values[n_values * p + k];
         probe_files[p] << '\n';
       }
+    if (rigid_files.empty())
+      for (const auto &b : bodies)
+        if (b.is_rigid())
+          {
+            rigid_files.emplace_back(output_directory + "/rigid_" + b.name + ".csv");
+            rigid_files.back() << "time,x,y,z,vx,vy,vz,fx,fy,fz,kinetic\n";
+          }
+    // Rigid bodies have advanced to n+1 already: report the centre of time
+    // n and the velocity at n, V^{n+1/2} - dt/2 F/M.
+    unsigned int r = 0;
+    for (const auto &b : bodies)
+      if (b.is_rigid())
+        {
+          const auto        &m = b.rigid;
+          const Tensor<1, 3> v = m.free ? m.velocity - 0.5 * dt / m.mass * m.last_force : m.velocity;
+          rigid_files[r] << std::setprecision(12) << t << ',' << m.previous_centre[0] << ','
+                         << m.previous_centre[1] << ',' << m.previous_centre[2] << ',' << v[0]
+                         << ',' << v[1] << ',' << v[2] << ',' << m.last_force[0] << ','
+                         << m.last_force[1] << ',' << m.last_force[2] << ',' << m.kinetic_energy
+                         << '\n';
+          ++r;
+        }
     if (!erosion_rows.empty())
       {
         if (!erosion_file.is_open())
@@ -325,6 +347,8 @@ namespace anvil
     for (auto &f : probe_files)
       f.flush();
     for (auto &f : contact_files)
+      f.flush();
+    for (auto &f : rigid_files)
       f.flush();
   }
 } // namespace anvil

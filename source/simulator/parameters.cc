@@ -257,6 +257,11 @@ namespace anvil
             prm.leave_subsection();
             check_body(boundary_conditions[i].body,
                        "Boundary condition " + bc_names[i]);
+            for (const auto &b : bodies)
+              if (b.name == boundary_conditions[i].body && b.is_rigid())
+                throw InputError("subsection 'Boundary condition " + bc_names[i] + "': body '" +
+                                 b.name + "' is rigid; hold it with 'Rigid body/Motion' and "
+                                 "'Rigid body/Constraints' instead");
           }
         contact_pairs.resize(pair_names.size());
         for (unsigned int i = 0; i < pair_names.size(); ++i)

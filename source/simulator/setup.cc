@@ -8,6 +8,7 @@
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
@@ -129,6 +130,7 @@ namespace anvil
     setup_system();
     setup_element_groups();
     setup_boundary_conditions();
+    setup_rigid_bodies();
     setup_contact();
     setup_probes();
     pcout << scene_file << ": scene '" << scene_name << "' is valid: "
@@ -223,16 +225,7 @@ namespace anvil
   {
     std::map<types::global_dof_index, double> prescribed;
     std::vector<unsigned int>                 matched(boundary_conditions.size(), 0);
-    // Every node of a rigid body moves with the body's velocity.
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && bodies[cell->material_id()].material->is_rigid())
-        for (unsigned int v = 0; v < 8; ++v)
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              const auto dof = cell->vertex_dof_index(v, c);
-              if (dof_handler.locally_owned_dofs().is_element(dof))
-                prescribed[dof] = bodies[cell->material_id()].initial_velocity[c];
-            }
+
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (unsigned int v = 0; v < 8; ++v)
@@ -274,6 +267,121 @@ namespace anvil
         constrained_velocity.push_back(value);
         velocity(dof) = value;
       }
+  }
+
+
+  // @sect3{Rigid bodies}
+  //
+  // Mass, centre of mass and inertia from the mesh by 2x2x2 Gauss
+  // quadrature of rho, rho x and rho (|r|^2 I - r r) over the owned cells
+  // (exact for the trilinear map and constant density), summed over the
+  // ranks. The centre equals the lumped-mass centroid sum m_I X_I / M,
+  // since sum N_I X_I = x; so gravity exerts no torque about it.
+  void Simulator::setup_rigid_bodies()
+  {
+    const unsigned int nb = bodies.size();
+    rigid_nodes.assign(nb, {});
+    rigid_dof.assign(position.locally_owned_size(), 0);
+    rigid_shape_force.assign(nb, Tensor<1, 3>());
+    rigid_shape_torque.assign(nb, Tensor<1, 3>());
+    bool any = false;
+    for (const auto &b : bodies)
+      any |= b.is_rigid();
+    if (!any)
+      {
+        rigid_dof.clear();
+        return;
+      }
+    // Moments of order 0, 1, 2 about the origin: m, m x (3), m x x (6).
+    std::vector<double> moments(10 * nb, 0.);
+    const QGauss<3>     quadrature(2);
+    FEValues<3>         fe_values(fe, quadrature, update_quadrature_points | update_JxW_values);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && bodies[cell->material_id()].is_rigid())
+        {
+          const unsigned int b   = cell->material_id();
+          const double       rho = bodies[b].material->density();
+          fe_values.reinit(cell);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const Point<3> x  = fe_values.quadrature_point(q);
+              const double   dm = rho * fe_values.JxW(q);
+              double        *m  = &moments[10 * b];
+              m[0] += dm;
+              for (unsigned int d = 0; d < 3; ++d)
+                m[1 + d] += dm * x[d];
+              m[4] += dm * x[0] * x[0];
+              m[5] += dm * x[1] * x[1];
+              m[6] += dm * x[2] * x[2];
+              m[7] += dm * x[0] * x[1];
+              m[8] += dm * x[1] * x[2];
+              m[9] += dm * x[0] * x[2];
+            }
+        }
+    Utilities::MPI::sum(moments, mpi_communicator, moments);
+    for (unsigned int b = 0; b < nb; ++b)
+      if (bodies[b].is_rigid())
+        {
+          const double *m = &moments[10 * b];
+          const double  M = m[0];
+          Point<3>      c(m[1] / M, m[2] / M, m[3] / M);
+          // Second moments about the centre, then I = tr(S) 1 - S.
+          Tensor<2, 3> S;
+          S[0][0] = m[4] - M * c[0] * c[0];
+          S[1][1] = m[5] - M * c[1] * c[1];
+          S[2][2] = m[6] - M * c[2] * c[2];
+          S[0][1] = S[1][0] = m[7] - M * c[0] * c[1];
+          S[1][2] = S[2][1] = m[8] - M * c[1] * c[2];
+          S[0][2] = S[2][0] = m[9] - M * c[0] * c[2];
+          Tensor<2, 3> I = trace(S) * unit_symmetric_tensor<3>() - S;
+          auto        &motion = bodies[b].rigid;
+          double       mass   = M;
+          if (motion.given_mass > 0)
+            {
+              I *= motion.given_mass / M;
+              mass = motion.given_mass;
+            }
+          if (!motion.given_inertia.empty())
+            {
+              const auto &g = motion.given_inertia;
+              I[0][0]       = g[0];
+              I[1][1]       = g[1];
+              I[2][2]       = g[2];
+              I[0][1] = I[1][0] = g[3];
+              I[1][2] = I[2][1] = g[4];
+              I[0][2] = I[2][0] = g[5];
+            }
+          motion.initialize(mass, c, I, bodies[b].initial_velocity);
+          pcout << "  rigid body '" << bodies[b].name << "': " << (motion.free ? "free" : "prescribed")
+                << " motion, mass " << mass << " kg, centre (" << c << ")" << std::endl;
+        }
+
+    // The owned nodes of each rigid body, and their initial velocity
+    // V + omega x (X - c).
+    const IndexSet &owned = dof_handler.locally_owned_dofs();
+    std::vector<bool> seen(position.locally_owned_size(), false);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial() && bodies[cell->material_id()].is_rigid())
+        for (unsigned int v = 0; v < 8; ++v)
+          {
+            const auto dof = cell->vertex_dof_index(v, 0);
+            if (!owned.is_element(dof))
+              continue;
+            const unsigned int i = owned.index_within_set(dof);
+            if (seen[i])
+              continue;
+            seen[i]            = true;
+            const auto &motion = bodies[cell->material_id()].rigid;
+            rigid_nodes[cell->material_id()].emplace_back(
+              position.get_partitioner()->global_to_local(dof), cell->vertex(v));
+            const Tensor<1, 3> vel = motion.velocity_at(cell->vertex(v), motion.centre);
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                rigid_dof[i + d] = 1;
+                velocity.local_element(position.get_partitioner()->global_to_local(dof) + d) = vel[d];
+              }
+          }
+    velocity.update_ghost_values();
   }
 
 
@@ -348,6 +456,11 @@ namespace anvil
                 }
           }
         contact_pairs[p].setup(segments[0], segments[1]);
+        for (unsigned int s = 0; s < 2; ++s)
+          contact_pairs[p].set_rigid(s, bodies[body[s]].is_rigid());
+        if (bodies[body[0]].is_rigid() && bodies[body[1]].is_rigid())
+          throw InputError(scene_file + ": subsection 'Contact pair " + contact_pairs[p].name +
+                           "': both bodies are rigid");
         const auto &dofs = contact_pairs[p].node_dofs();
         contact_local_index[p].resize(dofs.size());
         for (unsigned int i = 0; i < dofs.size(); ++i)

@@ -146,6 +146,10 @@ namespace anvil
   {
     if (contact_pairs.empty())
       return;
+    for (auto &t : rigid_shape_force)
+      t = 0;
+    for (auto &t : rigid_shape_torque)
+      t = 0;
     TimerOutput::Scope t(*timer, "contact");
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
       {
@@ -167,7 +171,32 @@ namespace anvil
         Utilities::MPI::sum(xs, mpi_communicator, xs);
         if (!vs.empty())
           Utilities::MPI::sum(vs, mpi_communicator, vs);
+        // Place the analytic shapes of rigid bodies (at n+1, like the
+        // positions; their velocities are the half-step ones).
+        const std::string names[2] = {contact_pairs[p].first_body, contact_pairs[p].second_body};
+        int               shape_body = -1;
+        for (unsigned int s = 0; s < 2; ++s)
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
+                bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
+              {
+                const auto              &m = bodies[b].rigid;
+                Contact::AnalyticSurface a;
+                a.shape            = &m.shape;
+                a.centre           = m.centre;
+                a.reference_centre = m.reference_centre;
+                a.rotation         = m.rotation;
+                a.velocity         = m.velocity;
+                a.angular_velocity = m.angular_velocity;
+                contact_pairs[p].set_analytic(s, a);
+                shape_body = b;
+              }
         contact_results[p] = contact_pairs[p].compute_forces(xs, vs, dt_previous, fs);
+        if (shape_body >= 0)
+          {
+            rigid_shape_force[shape_body] += contact_results[p].shape_force;
+            rigid_shape_torque[shape_body] += contact_results[p].shape_torque;
+          }
         // Replicated evaluation: every rank has the same friction work.
         energies.friction += contact_results[p].friction_work;
         for (unsigned int i = 0; i < index.size(); ++i)
@@ -194,12 +223,21 @@ namespace anvil
     const double      *f      = force.begin();
     const double      *m      = mass.begin();
     double             kinetic = 0;
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const double v_old = v[i];
-        v[i] += dt_avg * f[i] / m[i];
-        kinetic += m[i] * v_old * v[i];
-      }
+    if (rigid_dof.empty())
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const double v_old = v[i];
+          v[i] += dt_avg * f[i] / m[i];
+          kinetic += m[i] * v_old * v[i];
+        }
+    else
+      for (unsigned int i = 0; i < n; ++i)
+        if (!rigid_dof[i])
+          {
+            const double v_old = v[i];
+            v[i] += dt_avg * f[i] / m[i];
+            kinetic += m[i] * v_old * v[i];
+          }
     double work = 0;
     for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
       {
@@ -213,8 +251,66 @@ namespace anvil
       }
     std::vector<double> sums = {kinetic, work};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
-    energies.kinetic = 0.5 * sums[0];
-    energies.external_work += sums[1];
+    double rigid_kinetic = 0, rigid_work = 0;
+    if (!rigid_dof.empty())
+      advance_rigid_bodies(dt_previous, dt, rigid_kinetic, rigid_work);
+    energies.kinetic = 0.5 * sums[0] + rigid_kinetic;
+    energies.external_work += sums[1] + rigid_work;
+  }
+
+
+  // @sect3{Rigid bodies}
+  //
+  // Resultant force and torque about the centre from the nodal forces
+  // (contact, gravity) of the owned nodes, plus the reactions of analytic
+  // contact shapes; the body advances (RigidBody::Motion::advance), and each
+  // node gets the velocity that carries it exactly to its rigid placement at
+  // n+1, so the common position update keeps the body rigid. A body of
+  // prescribed motion is held by a reaction equal and opposite to the
+  // resultant, whose work -(F . V + T . omega) dt is external work.
+  void Simulator::advance_rigid_bodies(const double dt_previous,
+                                       const double dt,
+                                       double      &kinetic,
+                                       double      &work)
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (bodies[b].is_rigid())
+        {
+          auto               &motion = bodies[b].rigid;
+          std::vector<double> ft(6, 0.);
+          for (const auto &[i, X] : rigid_nodes[b])
+            {
+              Tensor<1, 3> fi, r;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  fi[d] = force.local_element(i + d);
+                  r[d]  = position.local_element(i + d) - motion.centre[d];
+                }
+              const Tensor<1, 3> t = cross_product_3d(r, fi);
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  ft[d] += fi[d];
+                  ft[3 + d] += t[d];
+                }
+            }
+          Utilities::MPI::sum(ft, mpi_communicator, ft);
+          Tensor<1, 3> F({ft[0], ft[1], ft[2]}), T({ft[3], ft[4], ft[5]});
+          F += rigid_shape_force[b];
+          T += rigid_shape_torque[b];
+          if (!motion.free)
+            work -= (F * motion.velocity + T * motion.angular_velocity) * dt;
+          kinetic += motion.advance(F, T, dt_previous, dt);
+          for (const auto &[i, X] : rigid_nodes[b])
+            {
+              Point<3> x;
+              for (unsigned int d = 0; d < 3; ++d)
+                x[d] = position.local_element(i + d);
+              const Tensor<1, 3> vel = dt > 0 ? (motion.placement(X) - x) / dt :
+                                                motion.velocity_at(x, motion.centre);
+              for (unsigned int d = 0; d < 3; ++d)
+                velocity.local_element(i + d) = vel[d];
+            }
+        }
   }
 
 
@@ -391,6 +487,7 @@ namespace anvil
       setup_element_groups();
       assemble_lumped_mass();
       setup_boundary_conditions();
+      setup_rigid_bodies();
       setup_contact();
       setup_probes();
       prepare_output_directory();

@@ -5,6 +5,8 @@
  */
 #pragma once
 
+#include <anvil/rigid_body/rigid_body.h>
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
@@ -37,6 +39,21 @@ namespace anvil::Contact
     std::vector<std::vector<unsigned int>> node_segments;
     /** The pair's nodes on this surface. */
     std::vector<unsigned int> nodes;
+    /** Per pair node: mean stiffness and thickness of this surface's
+        segments around it (the slave side's contact stiffness against a
+        rigid surface). */
+    std::vector<double> node_stiffness, node_depth;
+    /** Whether the surface belongs to a rigid body. */
+    bool rigid = false;
+  };
+
+  /** The placement of a rigid body's analytic contact shape. */
+  struct AnalyticSurface
+  {
+    const RigidBody::Shape *shape = nullptr;
+    dealii::Point<3>        centre, reference_centre;
+    dealii::Tensor<2, 3>    rotation;
+    dealii::Tensor<1, 3>    velocity, angular_velocity;
   };
 
   /** One segment as the simulator hands it over, with global dof indices. */
@@ -65,6 +82,9 @@ namespace anvil::Contact
     double friction_work = 0;
     /** Sum of the friction forces on the first body's nodes. Units: N. */
     std::array<double, 3> friction_on_first = {{0, 0, 0}};
+    /** Resultant force and torque (about the body's centre) on a rigid
+        body's analytic shape. Units: N, N m. */
+    dealii::Tensor<1, 3> shape_force, shape_torque;
     /** Number of active slave nodes (both passes). */
     unsigned int n_active = 0;
   };
@@ -116,6 +136,23 @@ namespace anvil::Contact
       return static_friction > 0 || dynamic_friction > 0 || normal_damping > 0;
     }
 
+    /** Mark surface @p s (0: first body) as a rigid body's. */
+    void set_rigid(const unsigned int s, const bool rigid)
+    {
+      surface[s].rigid = rigid;
+    }
+
+    /** Let surface @p s be the analytic shape @p a (placed anew each
+        step) instead of its mesh faces. */
+    void set_analytic(const unsigned int s, const AnalyticSurface &a)
+    {
+      analytic[s] = a;
+    }
+    bool has_analytic(const unsigned int s) const
+    {
+      return analytic[s].shape != nullptr;
+    }
+
     /** Lumped masses of the pair's nodes (for the normal damping). */
     void set_node_masses(const std::vector<double> &masses)
     {
@@ -152,5 +189,17 @@ namespace anvil::Contact
         zero for nodes not in contact. */
     std::vector<double> tangential_force[2];
     std::vector<double> node_mass;
+    AnalyticSurface     analytic[2];
+
+    /** The slave nodes of @p slave against the analytic shape @p a. */
+    void analytic_pass(const Surface             &slave,
+                       const AnalyticSurface     &a,
+                       const std::vector<double> &x,
+                       const std::vector<double> &v,
+                       double                     dt,
+                       std::vector<double>       &f,
+                       bool                       slave_is_first,
+                       std::vector<double>       &tangential_force,
+                       ContactResult             &result) const;
   };
 } // namespace anvil::Contact

@@ -7,6 +7,7 @@
 
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/interface.h>
+#include <anvil/rigid_body/rigid_body.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
@@ -45,6 +46,13 @@ namespace anvil
     Element::HourglassType                     hourglass;
     double                                     hourglass_coefficient;
     dealii::Tensor<1, 3>                       initial_velocity;
+    /** Motion of a body of rigid material (unused otherwise). */
+    RigidBody::Motion rigid;
+
+    bool is_rigid() const
+    {
+      return material->is_rigid();
+    }
 
   private:
     std::string          mesh_source;

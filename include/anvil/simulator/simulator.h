@@ -101,6 +101,7 @@ namespace anvil
     void assemble_lumped_mass();
     void setup_boundary_conditions();
     void setup_contact();
+    void setup_rigid_bodies();
     void setup_probes();
     void prepare_output_directory();
 
@@ -169,6 +170,17 @@ namespace anvil
     /** Last state that passed the health checks. */
     VectorType good_position, good_velocity;
     double     good_time = 0;
+
+    /** Per body: the owned nodes of a rigid body (local x-dof index and
+        reference position); empty for deformable bodies. And a mask of the
+        owned dofs that belong to rigid bodies. */
+    std::vector<std::vector<std::pair<unsigned int, dealii::Point<3>>>> rigid_nodes;
+    std::vector<unsigned char>                                          rigid_dof;
+    /** Per body: force and torque (about the centre) on a rigid body from
+        analytic contact shapes, this step (replicated on every rank). */
+    std::vector<dealii::Tensor<1, 3>> rigid_shape_force, rigid_shape_torque;
+    std::vector<std::ofstream>        rigid_files;
+    void advance_rigid_bodies(double dt_previous, double dt, double &kinetic, double &work);
 
     /** Constrained dofs (local indices) and their prescribed velocities. */
     std::vector<unsigned int> constrained_dofs;
