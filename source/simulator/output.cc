@@ -47,12 +47,23 @@ namespace anvil
     if (!probes.empty())
       Utilities::MPI::sum(probe_values, mpi_communicator, probe_values);
 
-    // Linear momentum of each body, sum m v over the owned dofs.
+    // Linear momentum of each body, sum m v over the owned dofs; a rigid
+    // body's is M V at time n (its nodal masses need not add up to M when
+    // the mass is given).
     std::vector<double> momentum(3 * bodies.size(), 0.);
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
-      momentum[3 * dof_body[i] + dof_component[i]] +=
-        mass.local_element(i) * velocity.local_element(i) - 0.5 * dt * force.local_element(i);
+      if (rigid_dof.empty() || !rigid_dof[i])
+        momentum[3 * dof_body[i] + dof_component[i]] +=
+          mass.local_element(i) * velocity.local_element(i) - 0.5 * dt * force.local_element(i);
     Utilities::MPI::sum(momentum, mpi_communicator, momentum);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (bodies[b].is_rigid())
+        {
+          const auto &m = bodies[b].rigid;
+          for (unsigned int d = 0; d < 3; ++d)
+            momentum[3 * b + d] =
+              m.mass * m.velocity[d] - (m.free ? 0.5 * dt * m.last_force[d] : 0.);
+        }
     if (!root)
       return;
 

@@ -517,8 +517,14 @@ namespace anvil
 
     double kinetic0 = 0;
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
-      kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
+      if (rigid_dof.empty() || !rigid_dof[i])
+        kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
     energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
+    // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
+    for (const auto &b : bodies)
+      if (b.is_rigid())
+        energies.kinetic += 0.5 * (b.rigid.mass * (b.rigid.velocity * b.rigid.velocity) +
+                                   b.rigid.angular_velocity * (b.rigid.reference_inertia * b.rigid.angular_velocity));
     initial_energy   = energies.total();
     output_results(0., "solution");
 
