@@ -286,6 +286,33 @@ namespace anvil::Contact
   }
 
 
+  double PenaltyContact::max_spring_frequency_squared() const
+  {
+    // Slave nodes of surface s meet the master stiffness of surface 1 - s
+    // (or their own against a rigid master, or an analytic shape).
+    double w2 = 0;
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        if (s == 0 && !symmetric && !has_analytic(1))
+          continue;
+        if (has_analytic(s) || surface[s].rigid)
+          continue; // a rigid surface's nodes are not slaves that matter
+        const Surface &slave = surface[s], &master = surface[1 - s];
+        double         k_master = 0;
+        for (const double k : master.stiffness)
+          k_master = std::max(k_master, k);
+        for (const unsigned int i : slave.nodes)
+          {
+            const double k = penalty_factor *
+                             (master.rigid || has_analytic(1 - s) ? slave.node_stiffness[i] : k_master);
+            if (node_mass[i] > 0)
+              w2 = std::max(w2, k / node_mass[i]);
+          }
+      }
+    return w2;
+  }
+
+
   void PenaltyContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
     for (auto &surf : surface)

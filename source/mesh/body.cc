@@ -35,11 +35,13 @@ namespace anvil
       prm.declare_entry(
         "Source",
         "box",
-        Patterns::Selection("box|cylinder|file"),
+        Patterns::Selection("box|cylinder|sphere|file"),
         "Where the mesh comes from: 'box' (a subdivided rectangular block "
         "between two corners; boundary ids 0..5 on the faces x-, x+, y-, "
         "y+, z-, z+), 'cylinder' (axis along x, centred on the origin "
-        "before the offset; boundary ids 0 hull, 1 at x-, 2 at x+), or "
+        "before the offset; boundary ids 0 hull, 1 at x-, 2 at x+), "
+        "'sphere' (a ball of 'Radius' centred on the origin before the "
+        "offset; boundary id 0), or "
         "'file' (Gmsh .msh or ABAQUS .inp; boundary ids from the file).");
       prm.declare_entry("Lower corner",
                         "0, 0, 0",
@@ -54,6 +56,13 @@ namespace anvil
                         Patterns::List(Patterns::Integer(1), 3, 3),
                         "Box: number of elements along x, y, z before "
                         "refinement. Units: none.");
+      prm.declare_entry("Grading",
+                        "1, 1, 1",
+                        Patterns::List(Patterns::Double(0.), 3, 3),
+                        "Box: ratio of successive element sizes along x, y, "
+                        "z, from the lower to the upper corner (a geometric "
+                        "mesh bias; 1: uniform, < 1: finer towards the upper "
+                        "corner). Units: none.");
       prm.declare_entry("Radius",
                         "0.5",
                         Patterns::Double(0.),
@@ -147,6 +156,7 @@ namespace anvil
       for (const auto &s :
            dealii::Utilities::split_string_list(prm.get("Subdivisions")))
         subdivisions.push_back(dealii::Utilities::string_to_int(s));
+      grading            = parse_vector(prm.get("Grading"), "Grading");
       radius             = prm.get_double("Radius");
       length             = prm.get_double("Length");
       axial_subdivisions = prm.get_integer("Axial subdivisions");
@@ -165,6 +175,8 @@ namespace anvil
           throw InputError("subsection 'Body " + name +
                            "/Mesh': 'Upper corner' must exceed 'Lower "
                            "corner' in every component");
+    if (mesh_source == "sphere" && radius <= 0)
+      throw InputError("subsection 'Body " + name + "/Mesh': sphere needs a positive 'Radius'");
     if (mesh_source == "cylinder" && (radius <= 0 || length <= 0))
       throw InputError("subsection 'Body " + name +
                        "/Mesh': cylinder needs positive 'Radius' and 'Length'");
@@ -214,8 +226,24 @@ namespace anvil
   {
     using namespace dealii;
     if (mesh_source == "box")
-      GridGenerator::subdivided_hyper_rectangle(
-        tria, subdivisions, lower, upper, /*colorize=*/true);
+      {
+        // Element sizes in geometric progression along each axis.
+        std::vector<std::vector<double>> steps(3);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            double size = 1, total = 0;
+            for (unsigned int i = 0; i < subdivisions[d]; ++i, size *= grading[d])
+              {
+                steps[d].push_back(size);
+                total += size;
+              }
+            for (auto &h : steps[d])
+              h *= (upper[d] - lower[d]) / total;
+          }
+        GridGenerator::subdivided_hyper_rectangle(tria, steps, lower, upper, /*colorize=*/true);
+      }
+    else if (mesh_source == "sphere")
+      GridGenerator::hyper_ball_balanced(tria, Point<3>(), radius);
     else if (mesh_source == "cylinder")
       GridGenerator::subdivided_cylinder(tria,
                                          axial_subdivisions,

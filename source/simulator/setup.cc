@@ -397,6 +397,7 @@ namespace anvil
     contact_velocities.assign(n_pairs, {});
     contact_forces.assign(n_pairs, {});
     contact_results.assign(n_pairs, {});
+    contact_frequency_squared = 0;
     auto body_index = [&](const std::string &name) {
       for (unsigned int b = 0; b < bodies.size(); ++b)
         if (bodies[b].name == name)
@@ -468,7 +469,6 @@ namespace anvil
             dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
               long(position.get_partitioner()->global_to_local(dofs[i])) :
               -1;
-        if (contact_pairs[p].has_friction())
           {
             std::vector<double> m(dofs.size(), 0.);
             for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -476,6 +476,9 @@ namespace anvil
                 m[i] = mass.local_element(contact_local_index[p][i]);
             Utilities::MPI::sum(m, mpi_communicator, m);
             contact_pairs[p].set_node_masses(m);
+            place_analytic_shapes(p);
+            contact_frequency_squared =
+                std::max(contact_frequency_squared, contact_pairs[p].max_spring_frequency_squared());
           }
         contact_positions[p].resize(3 * dofs.size());
         if (contact_pairs[p].has_friction())

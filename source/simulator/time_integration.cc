@@ -171,26 +171,12 @@ namespace anvil
         Utilities::MPI::sum(xs, mpi_communicator, xs);
         if (!vs.empty())
           Utilities::MPI::sum(vs, mpi_communicator, vs);
-        // Place the analytic shapes of rigid bodies (at n+1, like the
-        // positions; their velocities are the half-step ones).
-        const std::string names[2] = {contact_pairs[p].first_body, contact_pairs[p].second_body};
-        int               shape_body = -1;
-        for (unsigned int s = 0; s < 2; ++s)
-          for (unsigned int b = 0; b < bodies.size(); ++b)
-            if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
-                bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
-              {
-                const auto              &m = bodies[b].rigid;
-                Contact::AnalyticSurface a;
-                a.shape            = &m.shape;
-                a.centre           = m.centre;
-                a.reference_centre = m.reference_centre;
-                a.rotation         = m.rotation;
-                a.velocity         = m.velocity;
-                a.angular_velocity = m.angular_velocity;
-                contact_pairs[p].set_analytic(s, a);
-                shape_body = b;
-              }
+        place_analytic_shapes(p);
+        int shape_body = -1;
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          if ((bodies[b].name == contact_pairs[p].first_body && contact_pairs[p].has_analytic(0)) ||
+              (bodies[b].name == contact_pairs[p].second_body && contact_pairs[p].has_analytic(1)))
+            shape_body = b;
         contact_results[p] = contact_pairs[p].compute_forces(xs, vs, dt_previous, fs);
         if (shape_body >= 0)
           {
@@ -204,6 +190,29 @@ namespace anvil
             for (unsigned int d = 0; d < 3; ++d)
               force.local_element(index[i] + d) += fs[3 * i + d];
       }
+  }
+
+
+  // Place the analytic shapes of rigid bodies of pair @p p (at n+1, like
+  // the positions; their velocities are the half-step ones).
+  void Simulator::place_analytic_shapes(const unsigned int p)
+  {
+    const std::string names[2] = {contact_pairs[p].first_body, contact_pairs[p].second_body};
+    for (unsigned int s = 0; s < 2; ++s)
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
+            bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
+          {
+            const auto              &m = bodies[b].rigid;
+            Contact::AnalyticSurface a;
+            a.shape            = &m.shape;
+            a.centre           = m.centre;
+            a.reference_centre = m.reference_centre;
+            a.rotation         = m.rotation;
+            a.velocity         = m.velocity;
+            a.angular_velocity = m.angular_velocity;
+            contact_pairs[p].set_analytic(s, a);
+          }
   }
 
 
@@ -513,6 +522,14 @@ namespace anvil
     // Step 0: forces of the initial state (stress free), energy E_0.
     zero_forces();
     critical_dt = compute_internal_forces(0.);
+    if (contact_frequency_squared > 0)
+      {
+        const double reduction =
+          1. - 1. / std::sqrt(1. + 0.25 * contact_frequency_squared * critical_dt * critical_dt);
+        if (reduction > 0.01)
+          pcout << "  contact penalty springs lower the stable time step by " << std::setprecision(3)
+                << 100. * reduction << " %" << std::endl;
+      }
     apply_contact(0.);
 
     double kinetic0 = 0;
@@ -539,7 +556,15 @@ namespace anvil
         const bool last = time >= end_time - eps;
         // The stable step from the current configuration (seed section
         // 3.6); the last step only synchronises the velocity.
-        current_dt = last ? dt_previous : std::min(time_step_factor * critical_dt, end_time - time);
+        // With contact springs of frequency omega_c on top of the elements'
+        // omega_e = 2 / dt_e, the stable step is 2 / sqrt(omega_e^2 +
+        // omega_c^2) (seed section 4.3: large penalty factors need smaller
+        // steps).
+        const double dt_stable =
+          contact_frequency_squared > 0 ?
+            1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
+            critical_dt;
+        current_dt = last ? dt_previous : std::min(time_step_factor * dt_stable, end_time - time);
         if (!(current_dt > 0))
           current_dt = dt_previous;
 

@@ -135,6 +135,10 @@ namespace anvil::Contact
     {
       return static_friction > 0 || dynamic_friction > 0 || normal_damping > 0;
     }
+    bool has_damping() const
+    {
+      return normal_damping > 0;
+    }
 
     /** Mark surface @p s (0: first body) as a rigid body's. */
     void set_rigid(const unsigned int s, const bool rigid)
@@ -152,6 +156,13 @@ namespace anvil::Contact
     {
       return analytic[s].shape != nullptr;
     }
+
+    /**
+     * Largest k / m of the pair's penalty springs over the slave nodes of
+     * both passes, with m the slave node's lumped mass: the square of the
+     * highest frequency the springs add to a node. Needs the node masses.
+     */
+    double max_spring_frequency_squared() const;
 
     /** Lumped masses of the pair's nodes (for the normal damping). */
     void set_node_masses(const std::vector<double> &masses)

@@ -58,6 +58,7 @@ namespace anvil
     std::string          mesh_source;
     dealii::Point<3>     lower, upper;
     std::vector<unsigned int> subdivisions;
+    dealii::Tensor<1, 3>      grading;
     double               radius = 0, length = 0;
     unsigned int         axial_subdivisions = 1;
     std::string          file_name;

@@ -197,6 +197,11 @@ namespace anvil
     double       initial_energy = 0;
     double       balance_error  = 0;
     double       critical_dt    = 0;
+    /** Largest k/m of the contact penalty springs (all pairs); the stable
+        step is 2 / sqrt(omega_e^2 + omega_c^2) with omega_e = 2 / dt_e. */
+    double       contact_frequency_squared = 0;
+    /** The analytic contact shapes of rigid bodies, placed for pair p. */
+    void place_analytic_shapes(unsigned int p);
     double       current_dt     = 0;
     unsigned int step_number    = 0;
     double       time           = 0;
