@@ -131,6 +131,33 @@ namespace anvil::Element
     }
 
     using Kinematics::rotate_stress;
+
+    /** The faces of the lexicographic hexahedron, each in cyclic order. */
+    constexpr unsigned int faces[6][4] = {
+      {0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+
+    /** Square of the largest face area, |(x_c - x_a) x (x_d - x_b)|^2 / 4
+        per face: with the volume, LS-DYNA's characteristic length V /
+        A_max, which is the safer of the two measures for distorted
+        elements. @p x returns coordinate a of vertex n. */
+    template <typename Coordinate>
+    inline double max_face_area2(const Coordinate &x)
+    {
+      double a2 = 0;
+      for (const auto &f : faces)
+        {
+          double p[3], q[3];
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              p[a] = x(f[2], a) - x(f[0], a);
+              q[a] = x(f[3], a) - x(f[1], a);
+            }
+          const double c0 = p[1] * q[2] - p[2] * q[1], c1 = p[2] * q[0] - p[0] * q[2],
+                       c2 = p[0] * q[1] - p[1] * q[0];
+          a2 = std::max(a2, 0.25 * (c0 * c0 + c1 * c1 + c2 * c2));
+        }
+      return a2;
+    }
   } // namespace
 
 
@@ -639,8 +666,11 @@ namespace anvil::Element
 
         // Stable time step of this element: L_e / c with the current
         // density rho_0 V_0 / V (seed Eq. (23)).
+        // The smaller of 2 / max |grad xi| and V / A_max (seed section 3.6;
+        // LS-DYNA's measure for solids).
         const double rho_c = rho0 * reference_volume[e] / volume;
-        min_dt2 = std::min(min_dt2, 4. / max_grad2 * rho_c / M);
+        const double A2    = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
+        min_dt2 = std::min(min_dt2, std::min(4. / max_grad2, volume * volume / A2) * rho_c / M);
 
         for (unsigned int n = 0; n < 8; ++n)
           for (unsigned int a = 0; a < 3; ++a)
@@ -937,7 +967,7 @@ namespace anvil::Element
                 fe[n][a][l] = f;
               }
 
-        // Stable time step per lane: L_e = 2 / max_c |grad xi_c|.
+        // Stable time step per lane: L_e = min(2 / max_c |grad xi_c|, V / A_max).
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
@@ -946,7 +976,10 @@ namespace anvil::Element
               g2 = std::max(g2, Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
                                   Ji[c][2][l] * Ji[c][2][l]);
             const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
-            dt2[l]             = 4. / g2 * rho_c / M;
+            const double A2 =
+              max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a][l]; });
+            const double V = 8. * detn[l];
+            dt2[l]         = std::min(4. / g2, V * V / A2) * rho_c / M;
           }
 
         // Write back and scatter the valid lanes, in element order.

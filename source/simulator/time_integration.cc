@@ -372,6 +372,7 @@ namespace anvil
       ++growth_steps;
     else
       growth_steps = 0;
+    const bool other_problem = !problem.empty();
     if (problem.empty() && growth_steps >= 10)
       {
         std::ostringstream s;
@@ -383,7 +384,7 @@ namespace anvil
           << time_step_factor << ")";
         problem = s.str();
       }
-    if (!problem.empty() && growth_steps > 0)
+    if (other_problem && growth_steps > 0)
       {
         std::ostringstream s;
         s << "; the explicit step is unstable: the total energy had grown for " << growth_steps
