@@ -303,10 +303,15 @@ namespace anvil::Contact
           k_master = std::max(k_master, k);
         for (const unsigned int i : slave.nodes)
           {
-            const double k = penalty_factor *
-                             (master.rigid || has_analytic(1 - s) ? slave.node_stiffness[i] : k_master);
+            // Against a rigid surface only the slave node moves: k / m. Between
+            // deformable bodies the slave and master nodes move against each
+            // other (2 k / m for equal masses), and with both passes a node is
+            // held by its own spring and by the other body's (twice that).
+            const bool   rigid_master = master.rigid || has_analytic(1 - s);
+            const double k            = penalty_factor * (rigid_master ? slave.node_stiffness[i] : k_master);
+            const double factor       = rigid_master ? 1. : (symmetric ? 4. : 2.);
             if (node_mass[i] > 0)
-              w2 = std::max(w2, k / node_mass[i]);
+              w2 = std::max(w2, factor * k / node_mass[i]);
           }
       }
     return w2;
