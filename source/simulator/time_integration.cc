@@ -31,9 +31,11 @@ namespace anvil
                 force.get_partitioner()->n_ghost_indices(),
               0.);
     // Gravity: the lumped body force m_I g on every owned dof.
+    // (Rigid bodies take M g at their centre in advance_rigid_bodies.)
     if (gravity.norm() > 0)
       for (unsigned int i = 0; i < force.locally_owned_size(); ++i)
-        force.local_element(i) = mass.local_element(i) * gravity[dof_component[i]];
+        if (rigid_dof.empty() || !rigid_dof[i])
+          force.local_element(i) = mass.local_element(i) * gravity[dof_component[i]];
   }
 
 
@@ -306,9 +308,14 @@ namespace anvil
           Tensor<1, 3> F({ft[0], ft[1], ft[2]}), T({ft[3], ft[4], ft[5]});
           F += rigid_shape_force[b];
           T += rigid_shape_torque[b];
+          // Gravity: M g at the centre of mass.
+          F += motion.mass * gravity;
           if (!motion.free)
             work -= (F * motion.velocity + T * motion.angular_velocity) * dt;
           kinetic += motion.advance(F, T, dt_previous, dt);
+          // Work of gravity over the coming step: the centre moves by
+          // exactly V^{n+1/2} dt.
+          work += motion.mass * (gravity * motion.velocity) * dt;
           for (const auto &[i, X] : rigid_nodes[b])
             {
               Point<3> x;
@@ -337,7 +344,8 @@ namespace anvil
       {
         double work = 0;
         for (unsigned int i = 0; i < n; ++i)
-          work += mass.local_element(i) * gravity[dof_component[i]] * dt * v[i];
+          if (rigid_dof.empty() || !rigid_dof[i])
+            work += mass.local_element(i) * gravity[dof_component[i]] * dt * v[i];
         energies.external_work += Utilities::MPI::sum(work, mpi_communicator);
       }
   }
