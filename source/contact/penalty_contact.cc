@@ -133,6 +133,23 @@ namespace anvil::Contact
   } // namespace
 
 
+  // @sect3{The search structure}
+  //
+  // An R-tree of the master nodes, rebuilt only when some master node has
+  // moved more than a safety distance (half the thinnest master element)
+  // since the last build. Between builds the nearest master node is still
+  // found exactly: if the stale nearest node is at stale distance d0 and no
+  // node has moved more than s, the true nearest node lies within stale
+  // distance d0 + 2 s of the slave node, and those candidates are compared
+  // at their current positions.
+  struct PenaltyContact::SearchTree
+  {
+    bgi::rtree<Value, bgi::rstar<16>> tree;
+    std::vector<double>               built;
+    double                            safety = 0;
+  };
+
+
   void PenaltyContact::declare_parameters(dealii::ParameterHandler &prm)
   {
     using namespace dealii;
@@ -341,10 +358,19 @@ namespace anvil::Contact
         return result;
       }
     // Pass 1: the second body's nodes against the first body's segments.
-    pass(surface[1], surface[0], x, v, dt, f, false, tangential_force[1], result);
+    for (unsigned int s = 0; s < 2; ++s)
+      if (!search[s])
+        {
+          search[s] = std::make_shared<SearchTree>();
+          double thinnest = 1e300;
+          for (const double d : surface[s].depth)
+            thinnest = std::min(thinnest, d);
+          search[s]->safety = 0.5 * thinnest;
+        }
+    pass(surface[1], surface[0], *search[0], x, v, dt, f, false, tangential_force[1], result);
     // Pass 2 (symmetric): the first body's nodes against the second's.
     if (symmetric)
-      pass(surface[0], surface[1], x, v, dt, f, true, tangential_force[0], result);
+      pass(surface[0], surface[1], *search[1], x, v, dt, f, true, tangential_force[0], result);
     return result;
   }
 
@@ -416,6 +442,7 @@ namespace anvil::Contact
 
   void PenaltyContact::pass(const Surface             &slave,
                             const Surface             &master,
+                            SearchTree                &search,
                             const std::vector<double> &x,
                             const std::vector<double> &v,
                             const double               dt,
@@ -437,26 +464,41 @@ namespace anvil::Contact
     };
 
     // @sect4{Step (1): nearest master node}
-    // An R-tree of the master nodes at their current positions, packed
-    // in one go (O(n log n)); queried for the nearest neighbour.
-    std::vector<Value> values;
-    values.reserve(master.nodes.size());
+    // The master surface's box and how far its nodes moved since the
+    // search tree was built; a rebuild packs the tree in one go
+    // (O(n log n)) when the motion exceeds the safety distance.
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    double max_depth = 0;
+    double max_depth = 0, drift2 = 0;
+    const bool fresh = search.built.empty();
     for (const unsigned int i : master.nodes)
       {
-        values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+        double d2 = 0;
         for (unsigned int d = 0; d < 3; ++d)
           {
             lo[d] = std::min(lo[d], x[3 * i + d]);
             hi[d] = std::max(hi[d], x[3 * i + d]);
+            if (!fresh)
+              d2 += (x[3 * i + d] - search.built[3 * i + d]) * (x[3 * i + d] - search.built[3 * i + d]);
           }
+        drift2 = std::max(drift2, d2);
       }
     for (const double d : master.depth)
       max_depth = std::max(max_depth, d);
-    if (values.empty())
+    if (master.nodes.empty())
       return;
-    const bgi::rtree<Value, bgi::rstar<16>> tree(values.begin(), values.end());
+    double drift = std::sqrt(drift2);
+    if (fresh || drift > search.safety)
+      {
+        std::vector<Value> values;
+        values.reserve(master.nodes.size());
+        for (const unsigned int i : master.nodes)
+          values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+        search.tree  = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
+        search.built = x;
+        drift        = 0;
+        ++result.n_rebuilds;
+      }
+    const auto &tree = search.tree;
 
     // Slave node normals: area-weighted average of the normals of the
     // slave segments around each node, in the current configuration.
@@ -525,7 +567,29 @@ namespace anvil::Contact
         nearest.clear();
         tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1),
                    std::back_inserter(nearest));
-        const unsigned int m  = nearest[0].second;
+        unsigned int m = nearest[0].second;
+        if (drift > 0)
+          {
+            // The true nearest node is among those within d0 + 2 drift of
+            // t at their build positions; compare them where they are now.
+            const double d0 = bg::distance(nearest[0].first, BPoint(t.x, t.y, t.z));
+            const double r  = d0 + 2. * drift;
+            nearest.clear();
+            tree.query(bgi::intersects(bg::model::box<BPoint>(BPoint(t.x - r, t.y - r, t.z - r),
+                                                              BPoint(t.x + r, t.y + r, t.z + r))),
+                       std::back_inserter(nearest));
+            double best_d2 = 1e300;
+            for (const auto &[p, i] : nearest)
+              {
+                const Vec    g  = t - pos(i);
+                const double d2 = dot(g, g);
+                if (d2 < best_d2 || (d2 == best_d2 && i < m))
+                  {
+                    best_d2 = d2;
+                    m       = i;
+                  }
+              }
+          }
         const Vec          xm = pos(m);
         const Vec          g  = t - xm;
 

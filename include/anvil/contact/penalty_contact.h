@@ -11,6 +11,7 @@
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,8 @@ namespace anvil::Contact
     dealii::Tensor<1, 3> shape_force, shape_torque;
     /** Number of active slave nodes (both passes). */
     unsigned int n_active = 0;
+    /** Number of search-tree rebuilds this step (both passes). */
+    unsigned int n_rebuilds = 0;
   };
 
   /**
@@ -182,9 +185,14 @@ namespace anvil::Contact
     double normal_damping = 0;
 
   private:
+    /** The search structure over one surface's master nodes (an R-tree of
+        their positions when it was built), kept from step to step. */
+    struct SearchTree;
+
     /** One pass: nodes of @p slave against segments of @p master. */
     void pass(const Surface             &slave,
               const Surface             &master,
+              SearchTree                &search,
               const std::vector<double> &x,
               const std::vector<double> &v,
               double                     dt,
@@ -201,6 +209,7 @@ namespace anvil::Contact
     std::vector<double> tangential_force[2];
     std::vector<double> node_mass;
     AnalyticSurface     analytic[2];
+    std::shared_ptr<SearchTree> search[2];
 
     /** The slave nodes of @p slave against the analytic shape @p a. */
     void analytic_pass(const Surface             &slave,
