@@ -604,8 +604,9 @@ namespace anvil::Contact
         // the wrong face (a node pressed into the end face of a rod would be
         // tested against the rod's side). We decide such cases instead by
         // the segment that faces the slave surface most directly, i.e. the
-        // most negative n_master . n_slave; and no segment facing the same
-        // way as the slave surface is ever a contact partner.
+        // most negative n_master . n_slave, which weighs more than the
+        // (50)-(52) test; and no segment facing the same way as the slave
+        // surface, or nearly perpendicular to it, is ever a contact partner.
         const Vec    ns    = slave_normal[s];
         const double ns_n  = norm(ns);
         int          chosen = -1;
@@ -628,7 +629,11 @@ namespace anvil::Contact
             const Vec    mn     = (1. / cn) * cc; // Eq. (52)
             const Vec    S      = g - dot(g, mn) * mn; // Eq. (51)
             const double facing = ns_n > 0 ? dot(mn, ns) / ns_n : -1.;
-            if (facing >= 0)
+            // A face nearly perpendicular to the slave surface is no partner:
+            // "penetration" along its normal is the slave node passing under
+            // a convex edge (a block sliding over a slab meets the slab's
+            // nodes at its front face).
+            if (facing > -0.2)
               continue;
             const bool decided = norm(S) > 1e-6 * norm(g) &&
                                  dot(cross(Ci, S), cc) > 0 &&
@@ -640,7 +645,7 @@ namespace anvil::Contact
             // surface stays in contact instead of flickering in and out).
             const double out    = std::max(std::abs(xi), std::abs(eta)) - 1.;
             const double score  = (out <= 1e-9 ? 0. : out <= edge_tolerance ? 5. : 100.) +
-                                 (decided ? -2. : 0.) + facing;
+                                 (decided ? -1. : 0.) + 2. * facing;
             if (score < best)
               {
                 best   = score;

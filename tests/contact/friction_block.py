@@ -23,6 +23,9 @@ an elastic block on a fixed rigid plane.
    damping lowers the stable step, so these runs use the factor 0.7).
 4. np = 2 against np = 1 for the sliding run: largest relative difference of
    energy.csv below 1e-8.
+5. The same slide on an elastic slab (fixed at its base) with the symmetric
+   method, friction in both passes, on two processes: the same stopping
+   time and distance within 2 %, balance below 1 %.
 """
 import os
 from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
@@ -33,12 +36,30 @@ c = Checker("friction block on a rigid plane")
 g = 9.81
 
 
-def scene(name, gravity, v0, mu_s, mu_d, decay, end_time, damping=0, factor=0.9):
+def scene(name, gravity, v0, mu_s, mu_d, decay, end_time, damping=0, factor=0.9,
+          deformable_plane=False):
+    plane_material = """    set Model = elastic
+    subsection elastic
+      set Density = 1000
+      set Young's modulus = 1e7
+      set Poisson's ratio = 0.3
+    end""" if deformable_plane else """    set Model = rigid
+    subsection rigid
+      set Density = 1000
+      set Young's modulus = 1e7
+      set Poisson's ratio = 0.3
+    end"""
+    extra = """set Boundary conditions = base
+subsection Boundary condition base
+  set Body = plane
+  set Boundary ids = 4
+end""" if deformable_plane else ""
     return write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
 # Elastic block on a rigid plane under gravity (friction test).
 set Bodies = plane, block
 set Contact pairs = floor
 set Probes = corner
+{extra}
 subsection Simulation
   set End time = {end_time}
   set History interval = 1e-3
@@ -53,12 +74,7 @@ subsection Body plane
     set Subdivisions = 16, 10, 1
   end
   subsection Material
-    set Model = rigid
-    subsection rigid
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0.3
-    end
+{plane_material}
   end
 end
 subsection Body block
@@ -80,7 +96,7 @@ end
 subsection Contact pair floor
   set First body = plane
   set Second body = block
-  set Symmetric = false
+  set Symmetric = {'true' if deformable_plane else 'false'}
   set Static friction coefficient = {mu_s}
   set Dynamic friction coefficient = {mu_d}
   set Friction decay coefficient = {decay}
@@ -116,6 +132,17 @@ c.check("friction energy / initial kinetic energy", e["friction"][-1], 0.5 * mas
 par = run("slide_np2", np=2, gravity=f"0, 0, {-g}", v0=v0, mu_s=mu, mu_d=mu, decay=0, end_time=0.45)
 c.check_below("np = 2 against np = 1: largest relative difference of energy.csv",
               max_relative_difference(e, par["energy"]), 1e-8)
+
+# Friction in both passes of the symmetric method, between two deformable
+# bodies (the plane now an elastic slab fixed at its base), in parallel.
+soft = run("slide_soft", np=2, gravity=f"0, 0, {-g}", v0=v0, mu_s=mu, mu_d=mu, decay=0,
+           end_time=0.45, deformable_plane=True)
+t, px = soft["momentum"]["time"], soft["momentum"]["block_px"]
+stop = next(i for i in range(len(t)) if px[i] <= 1e-3 * px[0])
+c.check("symmetric, deformable slab (np = 2): stopping time [s]", t[stop], v0 / (mu * g), 0.02, relative=True)
+c.check("symmetric, deformable slab (np = 2): stopping distance [m]", soft["probe_corner"]["ux"][-1],
+        v0 ** 2 / (2 * mu * g), 0.02, relative=True)
+c.check_below("symmetric, deformable slab: largest energy balance error", max(soft["energy"]["balance_error"]), 0.01)
 
 # Static against dynamic friction: a slope of tangential gravity.
 stuck = run("stuck", gravity=f"{0.4 * g}, 0, {-g}", v0=0, mu_s=0.5, mu_d=0.3, decay=100, end_time=0.3,
