@@ -968,6 +968,18 @@ namespace anvil::Element
               }
 
         // Stable time step per lane: L_e = min(2 / max_c |grad xi_c|, V / A_max).
+        // The largest face area across lanes (as max_face_area2, faces
+        // outside, lanes inside, so that it vectorises).
+        alignas(64) double A2[W] = {};
+        for (const auto &f : faces)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double p0 = xe[f[2]][0][l] - xe[f[0]][0][l], q0 = xe[f[3]][0][l] - xe[f[1]][0][l];
+              const double p1 = xe[f[2]][1][l] - xe[f[0]][1][l], q1 = xe[f[3]][1][l] - xe[f[1]][1][l];
+              const double p2 = xe[f[2]][2][l] - xe[f[0]][2][l], q2 = xe[f[3]][2][l] - xe[f[1]][2][l];
+              const double c0 = p1 * q2 - p2 * q1, c1 = p2 * q0 - p0 * q2, c2 = p0 * q1 - p1 * q0;
+              A2[l]           = std::max(A2[l], 0.25 * (c0 * c0 + c1 * c1 + c2 * c2));
+            }
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
@@ -976,10 +988,8 @@ namespace anvil::Element
               g2 = std::max(g2, Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
                                   Ji[c][2][l] * Ji[c][2][l]);
             const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
-            const double A2 =
-              max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a][l]; });
-            const double V = 8. * detn[l];
-            dt2[l]         = std::min(4. / g2, V * V / A2) * rho_c / M;
+            const double V     = 8. * detn[l];
+            dt2[l]             = std::min(4. / g2, V * V / A2[l]) * rho_c / M;
           }
 
         // Write back and scatter the valid lanes, in element order.

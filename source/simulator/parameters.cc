@@ -275,8 +275,9 @@ namespace anvil
               pcout << "Warning: contact pair '" << pair_names[i]
                     << "': penalty scale factor "
                     << contact_pairs[i].penalty_factor
-                    << " > 0.4 (seed section 4.3); the penalty springs may "
-                       "need a smaller time step than the elements."
+                    << " > 0.4 (seed section 4.3): the penalty springs need a "
+                       "smaller time step than the elements; the step is reduced "
+                       "to 2 / sqrt(omega_e^2 + omega_c^2) (reduction printed at the start)."
                     << std::endl;
           }
         probes.resize(probe_names.size());
