@@ -256,6 +256,7 @@ namespace anvil::Element
       hourglass_resistance.assign(12 * n, 0.);
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
+    shape_factor.assign(n, 1.);
     if (material.erodes())
       alive.assign(n, 1);
   }
@@ -279,7 +280,7 @@ namespace anvil::Element
               (reference_volume.capacity() + energy_weight.capacity() + jacobian_inverse_ref.capacity() +
                jxw_ref.capacity() + stresses.capacity() + history.capacity() +
                hourglass_modes.capacity() + hourglass_resistance.capacity() +
-               internal_energy.capacity() +
+               internal_energy.capacity() + shape_factor.capacity() +
                hourglass_energy.capacity())) /
            n;
   }
@@ -290,6 +291,7 @@ namespace anvil::Element
                                                    const double  dt,
                                                    double       *force)
   {
+    refresh_shape = (n_calls++ % shape_refresh_interval == 0);
     // Dispatch once per group to a loop specialised at compile time. The
     // one-point updated Lagrangian path, the workhorse of impact analysis,
     // runs batched; the others element by element.
@@ -335,9 +337,10 @@ namespace anvil::Element
                                                              const double  dt,
                                                              double       *force)
   {
-    const unsigned int n = n_elements();
     if (formulation != Formulation::updated_lagrangian || integration != Integration::one_point)
       return compute_internal_forces(x, v, dt, force);
+    refresh_shape = (n_calls++ % shape_refresh_interval == 0);
+    const unsigned int n = n_elements();
     switch (hourglass)
       {
         case HourglassType::viscous:
@@ -667,10 +670,16 @@ namespace anvil::Element
         // Stable time step of this element: L_e / c with the current
         // density rho_0 V_0 / V (seed Eq. (23)).
         // The smaller of 2 / max |grad xi| and V / A_max (seed section 3.6;
-        // LS-DYNA's measure for solids).
+        // LS-DYNA's measure for solids); the ratio of the two squared, the
+        // element's distortion, is refreshed every few cycles (see
+        // shape_factor).
         const double rho_c = rho0 * reference_volume[e] / volume;
-        const double A2    = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
-        min_dt2 = std::min(min_dt2, std::min(4. / max_grad2, volume * volume / A2) * rho_c / M);
+        if (refresh_shape)
+          {
+            const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
+            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.);
+          }
+        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M);
 
         for (unsigned int n = 0; n < 8; ++n)
           for (unsigned int a = 0; a < 3; ++a)
@@ -969,8 +978,9 @@ namespace anvil::Element
 
         // Stable time step per lane: L_e = min(2 / max_c |grad xi_c|, V / A_max).
         // The largest face area across lanes (as max_face_area2, faces
-        // outside, lanes inside, so that it vectorises).
+        // outside, lanes inside, so that it vectorises), on refresh cycles.
         alignas(64) double A2[W] = {};
+        if (refresh_shape)
         for (const auto &f : faces)
           for (unsigned int l = 0; l < W; ++l)
             {
@@ -989,7 +999,9 @@ namespace anvil::Element
                                   Ji[c][2][l] * Ji[c][2][l]);
             const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
             const double V     = 8. * detn[l];
-            dt2[l]             = std::min(4. / g2, V * V / A2[l]) * rho_c / M;
+            if (refresh_shape && l < n_valid)
+              shape_factor[el[l]] = std::min(1., V * V / A2[l] * g2 / 4.);
+            dt2[l] = 4. / g2 * shape_factor[el[l]] * rho_c / M;
           }
 
         // Write back and scatter the valid lanes, in element order.

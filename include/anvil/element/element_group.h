@@ -254,6 +254,17 @@ namespace anvil::Element
     std::vector<double> hourglass_resistance;
     std::vector<double> internal_energy;
     std::vector<double> hourglass_energy;
+    /**
+     * Per element, (V / A_max)^2 / (2 / max |grad xi|)^2 (at most 1): how
+     * much the element's distortion lowers its stable step below the
+     * centroid measure. The face areas cost a quarter of a one-point
+     * element's step, and distortion changes slowly, so it is refreshed
+     * every shape_refresh_interval calls (the first call included).
+     */
+    std::vector<double> shape_factor;
+    static constexpr unsigned int shape_refresh_interval = 8;
+    unsigned int                  n_calls                = 0;
+    bool                          refresh_shape          = true;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
   };
