@@ -133,6 +133,8 @@ namespace anvil
                          << '\n';
           ++r;
         }
+    if (!rebars.empty())
+      write_rebar_history(t);
     if (!erosion_rows.empty())
       {
         if (!erosion_file.is_open())
@@ -360,6 +362,8 @@ namespace anvil
     for (auto &f : contact_files)
       f.flush();
     for (auto &f : rigid_files)
+      f.flush();
+    for (auto &f : rebar_files)
       f.flush();
   }
 } // namespace anvil

@@ -49,6 +49,11 @@ namespace anvil
                         Patterns::List(Patterns::Anything()),
                         "Names of probe points; each has a subsection "
                         "'Probe NAME' and writes probe_NAME.csv.");
+      prm.declare_entry("Rebars",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of reinforcement layouts; each has a subsection "
+                        "'Rebar NAME' and writes rebar_NAME.csv.");
     }
   } // namespace
 
@@ -57,7 +62,8 @@ namespace anvil
                                      const std::vector<std::string> &body_names,
                                      const std::vector<std::string> &bc_names,
                                      const std::vector<std::string> &pair_names,
-                                     const std::vector<std::string> &probe_names)
+                                     const std::vector<std::string> &probe_names,
+                                     const std::vector<std::string> &rebar_names)
   {
     using namespace dealii;
     declare_lists(prm);
@@ -140,6 +146,12 @@ namespace anvil
         Contact::PenaltyContact::declare_parameters(prm);
         prm.leave_subsection();
       }
+    for (const auto &r : rebar_names)
+      {
+        prm.enter_subsection("Rebar " + r);
+        Rebar::Layout::declare_parameters(prm);
+        prm.leave_subsection();
+      }
     for (const auto &p : probe_names)
       {
         prm.enter_subsection("Probe " + p);
@@ -159,7 +171,7 @@ namespace anvil
   void Simulator::print_parameters(std::ostream &out)
   {
     dealii::ParameterHandler prm;
-    declare_parameters(prm, {"body"}, {"support"}, {"pair"}, {"probe"});
+    declare_parameters(prm, {"body"}, {"support"}, {"pair"}, {"probe"}, {"bars"});
     prm.print_parameters(out,
                          dealii::ParameterHandler::OutputStyle::PRM |
                            dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
@@ -195,7 +207,8 @@ namespace anvil
     const auto bc_names    = names(lists.get("Boundary conditions"));
     const auto pair_names  = names(lists.get("Contact pairs"));
     const auto probe_names = names(lists.get("Probes"));
-    for (const auto *list : {&body_names, &bc_names, &pair_names, &probe_names})
+    const auto rebar_names = names(lists.get("Rebars"));
+    for (const auto *list : {&body_names, &bc_names, &pair_names, &probe_names, &rebar_names})
       if (std::set<std::string>(list->begin(), list->end()).size() != list->size())
         throw InputError(parameter_file + ": a name appears twice in one of "
                                           "'Bodies', 'Boundary conditions', "
@@ -205,7 +218,7 @@ namespace anvil
 
     // Pass 2: everything, strictly.
     dealii::ParameterHandler prm;
-    declare_parameters(prm, body_names, bc_names, pair_names, probe_names);
+    declare_parameters(prm, body_names, bc_names, pair_names, probe_names, rebar_names);
     parse(prm, false);
 
     const std::string dir =
@@ -279,6 +292,14 @@ namespace anvil
                        "smaller time step than the elements; the step is reduced "
                        "to 2 / sqrt(omega_e^2 + omega_c^2) (reduction printed at the start)."
                     << std::endl;
+          }
+        rebar_layouts.resize(rebar_names.size());
+        for (unsigned int i = 0; i < rebar_names.size(); ++i)
+          {
+            prm.enter_subsection("Rebar " + rebar_names[i]);
+            rebar_layouts[i].parse_parameters(prm, rebar_names[i], dir.empty() ? "." : dir);
+            prm.leave_subsection();
+            check_body(rebar_layouts[i].host, "Rebar " + rebar_names[i]);
           }
         probes.resize(probe_names.size());
         for (unsigned int i = 0; i < probe_names.size(); ++i)

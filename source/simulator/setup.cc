@@ -129,6 +129,7 @@ namespace anvil
     make_grid();
     setup_system();
     setup_element_groups();
+    setup_rebar();
     setup_boundary_conditions();
     setup_rigid_bodies();
     setup_contact();
@@ -215,6 +216,7 @@ namespace anvil
                   mass(dof) += m[v];
               }
         }
+    add_rebar_mass();
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
       AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
   }

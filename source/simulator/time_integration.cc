@@ -70,6 +70,9 @@ namespace anvil
       }
     std::vector<double> increments = {d_int, d_hg, d_eroded, double(eroded.size())};
     Utilities::MPI::sum(increments, mpi_communicator, increments);
+    // Reinforcement: replicated on every process, its energy counted once.
+    if (!rebars.empty())
+      dt_crit = std::min(dt_crit, compute_rebar_forces(dt_previous));
     energies.internal += increments[0];
     energies.hourglass += increments[1];
     energies.eroded += increments[2];
@@ -503,6 +506,7 @@ namespace anvil
       make_grid();
       setup_system();
       setup_element_groups();
+      setup_rebar();
       assemble_lumped_mass();
       setup_boundary_conditions();
       setup_rigid_bodies();

@@ -9,6 +9,7 @@
 #include <anvil/contact/penalty_contact.h>
 #include <anvil/element/element_group.h>
 #include <anvil/mesh/body.h>
+#include <anvil/rebar/rebar.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/parameter_handler.h>
@@ -91,7 +92,8 @@ namespace anvil
                                    const std::vector<std::string>   &bodies,
                                    const std::vector<std::string>   &bcs,
                                    const std::vector<std::string>   &pairs,
-                                   const std::vector<std::string>   &probes);
+                                   const std::vector<std::string>   &probes,
+                                   const std::vector<std::string>   &rebars = {});
     void        parse_parameters(const std::string &parameter_file);
 
     // Setup (source/simulator/setup.cc)
@@ -102,6 +104,11 @@ namespace anvil
     void setup_boundary_conditions();
     void setup_contact();
     void setup_rigid_bodies();
+    // Reinforcement (source/simulator/rebar.cc)
+    void   setup_rebar();
+    double compute_rebar_forces(double dt_previous);
+    void   add_rebar_mass();
+    void   write_rebar_history(double time);
     void setup_probes();
     void prepare_output_directory();
 
@@ -151,6 +158,9 @@ namespace anvil
     std::vector<BoundaryCondition>        boundary_conditions;
     std::vector<Contact::PenaltyContact>  contact_pairs;
     std::vector<Probe>                    probes;
+    std::vector<Rebar::Layout>            rebar_layouts;
+    std::vector<Rebar::Trusses>           rebars;
+    std::vector<std::ofstream>            rebar_files;
 
     // Discretisation
     dealii::parallel::distributed::Triangulation<3> triangulation;

@@ -1,0 +1,107 @@
+/**
+ * @file
+ * Reinforcement: two-node truss elements (like ABAQUS T3D2) embedded in a
+ * hexahedral host body (seed sections 5.1, 5.3, 5.4).
+ */
+#pragma once
+
+#include <anvil/material_model/interface.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil::Rebar
+{
+  /**
+   * One reinforcement layout of a scene ("Rebar NAME"): where the bars are,
+   * their section and steel, and how they are coupled to the host body.
+   *
+   * Layouts: longitudinal bars of a prismatic member along an axis (bars
+   * per face, corners included, at 'Cover' from the member's faces to the
+   * bar surface), closed stirrups at a spacing, or polylines from a file.
+   * Every polyline is cut into truss elements no longer than 'Element
+   * length'.
+   *
+   * Coupling 'perfect bond' (the seed's common-node model): every truss
+   * node follows the host material point it sits in, x_r = sum_I N_I(xi_r)
+   * x_I; the truss forces and the rebar mass go to the host nodes through
+   * the same N_I, which conserves momentum. Where the host mesh has nodes on
+   * the bar, xi_r is a vertex and the coupling is the shared node.
+   */
+  class Layout
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm,
+                                 const std::string        &name,
+                                 const std::string        &scene_directory);
+
+    /** The bars as polylines in the reference configuration. */
+    std::vector<std::vector<dealii::Point<3>>> polylines() const;
+
+    /** Longitudinal and transverse reinforcement ratios of the member
+        (steel area over concrete area; A_sv / (b s) per direction for
+        stirrups), for the screen. */
+    std::string ratio_summary() const;
+
+    std::string                                name;
+    std::string                                host;
+    std::string                                layout;
+    double                                     diameter       = 0;
+    double                                     element_length = 0;
+    /** Optional point whose nearest truss element rebar_NAME.csv reports. */
+    bool             has_probe = false;
+    dealii::Point<3> probe;
+    std::unique_ptr<MaterialModel::Interface> material;
+
+    double area() const
+    {
+      return 0.25 * 3.14159265358979323846 * diameter * diameter;
+    }
+
+  private:
+    unsigned int     axis = 0;
+    dealii::Point<3> lower, upper;
+    double           cover   = 0;
+    unsigned int     per_face = 2;
+    double           spacing = 0;
+    std::string      file_name;
+  };
+
+
+  /**
+   * The truss elements of one layout with their state. Replicated on every
+   * process (reinforcement has few nodes compared with the host): every
+   * process evaluates every element in the same order on the same
+   * positions, so the result does not depend on the partition.
+   */
+  struct Trusses
+  {
+    /** Reference positions of the nodes, and the two nodes of each element. */
+    std::vector<dealii::Point<3>>            X;
+    std::vector<std::array<unsigned int, 2>> elements;
+    std::vector<double>                      reference_length, length;
+    /** Axial Cauchy stress, axial force, internal energy per element. */
+    std::vector<double> stress, force, energy;
+    std::vector<double> history;
+    unsigned int        n_history = 0;
+
+    /** Embedding: host cell (scene-wide coarse id) and natural coordinates
+        in [-1,1]^3 of each node. */
+    std::vector<unsigned long>          host_cell;
+    std::vector<std::array<double, 3>>  xi;
+    /** On this process: for each node, the local x-dof indices of the host
+        cell's 8 vertices if the cell is owned or ghost here (-1 if not), and
+        whether the host cell is owned here. */
+    std::vector<std::array<long, 8>> host_dofs;
+    std::vector<bool>                host_owned;
+
+    /** Trilinear shape functions at xi (lexicographic vertices). */
+    static std::array<double, 8> shape_values(const std::array<double, 3> &xi);
+  };
+} // namespace anvil::Rebar

@@ -1,0 +1,229 @@
+/**
+ * @file
+ * Reinforcement layouts. See rebar.h.
+ */
+#include <anvil/rebar/rebar.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace anvil::Rebar
+{
+  using namespace dealii;
+
+  std::array<double, 8> Trusses::shape_values(const std::array<double, 3> &xi)
+  {
+    std::array<double, 8> N;
+    for (unsigned int I = 0; I < 8; ++I)
+      N[I] = 0.125 * (1. + ((I & 1) ? 1. : -1.) * xi[0]) * (1. + ((I & 2) ? 1. : -1.) * xi[1]) *
+             (1. + ((I & 4) ? 1. : -1.) * xi[2]);
+    return N;
+  }
+
+
+  void Layout::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Host body", "", Patterns::Anything(),
+                      "Name of the body the bars are embedded in.");
+    prm.declare_entry("Layout",
+                      "longitudinal",
+                      Patterns::Selection("longitudinal|stirrups|polylines"),
+                      "'longitudinal': bars along 'Axis' of the member between "
+                      "'Member lower corner' and 'Member upper corner'; "
+                      "'stirrups': closed ties around that axis at 'Spacing'; "
+                      "'polylines': from 'File name'.");
+    prm.declare_entry("Axis", "z", Patterns::Selection("x|y|z"),
+                      "Axis of the prismatic member.");
+    prm.declare_entry("Member lower corner", "0, 0, 0",
+                      Patterns::List(Patterns::Double(), 3, 3),
+                      "Lowest corner of the member's bounding box. Units: m.");
+    prm.declare_entry("Member upper corner", "1, 1, 1",
+                      Patterns::List(Patterns::Double(), 3, 3),
+                      "Highest corner of the member's bounding box. Units: m.");
+    prm.declare_entry("Cover", "0.03", Patterns::Double(0.),
+                      "Concrete cover from the member's faces to the bar "
+                      "surface. Units: m.");
+    prm.declare_entry("Bars per face", "2", Patterns::Integer(1),
+                      "Longitudinal bars on each face, corners included (1: a "
+                      "single central bar). Units: none.");
+    prm.declare_entry("Diameter", "0.016", Patterns::Double(0.),
+                      "Bar diameter. Units: m.");
+    prm.declare_entry("Spacing", "0.1", Patterns::Double(0.),
+                      "Stirrups: spacing along the axis. Units: m.");
+    prm.declare_entry("File name", "", Patterns::Anything(),
+                      "Polylines: a text file of 'x y z' lines, polylines "
+                      "separated by blank lines (relative to the scene file).");
+    prm.declare_entry("Element length", "0.05", Patterns::Double(0.),
+                      "Largest truss element length. Units: m.");
+    prm.declare_entry("Probe point", "", Patterns::Anything(),
+                      "Optional 'x, y, z': rebar_NAME.csv also reports the axial "
+                      "force and stress of the truss element nearest to it. Units: m.");
+    prm.declare_entry("Coupling",
+                      "perfect bond",
+                      Patterns::Selection("perfect bond|bond-slip"),
+                      "'perfect bond': the bars follow the host (embedded, "
+                      "common-node model of the seed). 'bond-slip' (seed "
+                      "Eq. (68)) is not available yet.");
+    prm.enter_subsection("Material");
+    MaterialModel::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+
+  void Layout::parse_parameters(ParameterHandler &prm,
+                                const std::string &layout_name,
+                                const std::string &scene_directory)
+  {
+    name                 = layout_name;
+    const std::string at = "subsection 'Rebar " + name + "': ";
+    host                 = prm.get("Host body");
+    layout               = prm.get("Layout");
+    axis                 = prm.get("Axis") == "x" ? 0 : prm.get("Axis") == "y" ? 1 : 2;
+    auto point           = [&](const std::string &entry) {
+      const auto p = Utilities::split_string_list(prm.get(entry));
+      return Point<3>(Utilities::string_to_double(p[0]), Utilities::string_to_double(p[1]),
+                      Utilities::string_to_double(p[2]));
+    };
+    lower          = point("Member lower corner");
+    upper          = point("Member upper corner");
+    cover          = prm.get_double("Cover");
+    per_face       = prm.get_integer("Bars per face");
+    diameter       = prm.get_double("Diameter");
+    spacing        = prm.get_double("Spacing");
+    element_length = prm.get_double("Element length");
+    file_name      = prm.get("File name");
+    if (!Utilities::trim(prm.get("Probe point")).empty())
+      {
+        const auto p = Utilities::split_string_list(prm.get("Probe point"));
+        if (p.size() != 3)
+          throw InputError(at + "'Probe point' needs three numbers");
+        has_probe = true;
+        probe     = Point<3>(Utilities::string_to_double(p[0]), Utilities::string_to_double(p[1]),
+                         Utilities::string_to_double(p[2]));
+      }
+    if (!file_name.empty() && file_name[0] != '/')
+      file_name = scene_directory + "/" + file_name;
+    if (host.empty())
+      throw InputError(at + "'Host body' is required");
+    if (!(diameter > 0) || !(element_length > 0))
+      throw InputError(at + "'Diameter' and 'Element length' must be positive");
+    if (prm.get("Coupling") == "bond-slip")
+      throw InputError(at + "'Coupling = bond-slip' (seed Eq. (68)) is not available yet; "
+                            "allowed now: perfect bond");
+    if (layout == "stirrups" && !(spacing > 0))
+      throw InputError(at + "stirrups need a positive 'Spacing'");
+    if (layout == "polylines" && !std::ifstream(file_name))
+      throw InputError(at + "the polyline file '" + file_name + "' cannot be opened");
+    for (unsigned int d = 0; d < 3; ++d)
+      if (!(upper[d] > lower[d]))
+        throw InputError(at + "'Member upper corner' must exceed 'Member lower corner'");
+    prm.enter_subsection("Material");
+    material = MaterialModel::create(prm);
+    prm.leave_subsection();
+    try
+      {
+        std::vector<double> h(material->n_uniaxial_history() + 1, 0.);
+        material->update_uniaxial_stress(0., 0., 0., h.data());
+      }
+    catch (const InputError &)
+      {
+        throw InputError(at + "material model '" + prm.get("Material") +
+                         "' has no uniaxial (truss) form");
+      }
+    catch (...)
+      {}
+    if (polylines().empty())
+      throw InputError(at + "the layout has no bar (check the cover and the member size)");
+  }
+
+
+  std::vector<std::vector<Point<3>>> Layout::polylines() const
+  {
+    std::vector<std::vector<Point<3>>> lines;
+    const unsigned int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
+    auto               make = [&](const double s_a, const double s_b, const double s_c) {
+      Point<3> p;
+      p[a] = s_a;
+      p[b] = s_b;
+      p[c] = s_c;
+      return p;
+    };
+    if (layout == "longitudinal")
+      {
+        const double inset = cover + 0.5 * diameter;
+        const double b0 = lower[b] + inset, b1 = upper[b] - inset;
+        const double c0 = lower[c] + inset, c1 = upper[c] - inset;
+        if (b1 < b0 || c1 < c0)
+          return lines;
+        std::vector<std::pair<double, double>> spots;
+        if (per_face == 1)
+          spots.emplace_back(0.5 * (b0 + b1), 0.5 * (c0 + c1));
+        else
+          for (unsigned int i = 0; i < per_face; ++i)
+            for (unsigned int j = 0; j < per_face; ++j)
+              if (i == 0 || j == 0 || i + 1 == per_face || j + 1 == per_face)
+                spots.emplace_back(b0 + (b1 - b0) * i / (per_face - 1.),
+                                   c0 + (c1 - c0) * j / (per_face - 1.));
+        for (const auto &[sb, sc] : spots)
+          lines.push_back({make(lower[a], sb, sc), make(upper[a], sb, sc)});
+      }
+    else if (layout == "stirrups")
+      {
+        const double inset = cover + 0.5 * diameter;
+        const double b0 = lower[b] + inset, b1 = upper[b] - inset;
+        const double c0 = lower[c] + inset, c1 = upper[c] - inset;
+        if (b1 < b0 || c1 < c0)
+          return lines;
+        for (double s = lower[a] + 0.5 * spacing; s < upper[a]; s += spacing)
+          lines.push_back({make(s, b0, c0), make(s, b1, c0), make(s, b1, c1), make(s, b0, c1),
+                           make(s, b0, c0)});
+      }
+    else
+      {
+        std::ifstream            in(file_name);
+        std::string              line;
+        std::vector<Point<3>>    current;
+        while (std::getline(in, line))
+          {
+            std::istringstream s(line);
+            Point<3>           p;
+            if (s >> p[0] >> p[1] >> p[2])
+              current.push_back(p);
+            else if (!current.empty())
+              {
+                if (current.size() > 1)
+                  lines.push_back(current);
+                current.clear();
+              }
+          }
+        if (current.size() > 1)
+          lines.push_back(current);
+      }
+    return lines;
+  }
+
+
+  std::string Layout::ratio_summary() const
+  {
+    const unsigned int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
+    const double       wb = upper[b] - lower[b], wc = upper[c] - lower[c];
+    std::ostringstream s;
+    s << std::setprecision(3);
+    if (layout == "longitudinal")
+      s << polylines().size() << " bars of " << 1000 * diameter
+        << " mm: longitudinal ratio " << 100. * polylines().size() * area() / (wb * wc) << " %";
+    else if (layout == "stirrups")
+      s << polylines().size() << " stirrups of " << 1000 * diameter << " mm at " << spacing
+        << " m: transverse ratios " << 100. * 2 * area() / (wb * spacing) << " % and "
+        << 100. * 2 * area() / (wc * spacing) << " %";
+    else
+      s << polylines().size() << " polylines of " << 1000 * diameter << " mm";
+    (void)a;
+    return s.str();
+  }
+} // namespace anvil::Rebar

@@ -1,0 +1,348 @@
+/**
+ * @file
+ * Reinforcement in the simulator: truss elements embedded in a host body
+ * with perfect bond (seed sections 5.1, 5.3, 5.4). See rebar/rebar.h.
+ */
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <map>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /** Natural coordinates of @p p in the hexahedron with vertices @p X
+        (lexicographic) by Newton's method on the trilinear map; true if
+        the point is inside (with a small tolerance). */
+    bool inverse_map(const std::array<Point<3>, 8> &X, const Point<3> &p, std::array<double, 3> &xi)
+    {
+      xi = {{0., 0., 0.}};
+      for (unsigned int it = 0; it < 20; ++it)
+        {
+          const auto   N = Rebar::Trusses::shape_values(xi);
+          Tensor<1, 3> r;
+          Tensor<2, 3> J;
+          for (unsigned int I = 0; I < 8; ++I)
+            {
+              r -= N[I] * X[I];
+              const double s[3] = {(I & 1) ? 1. : -1., (I & 2) ? 1. : -1., (I & 4) ? 1. : -1.};
+              for (unsigned int c = 0; c < 3; ++c)
+                {
+                  double d = 0.125 * s[c];
+                  for (unsigned int e = 0; e < 3; ++e)
+                    if (e != c)
+                      d *= 1. + s[e] * xi[e];
+                  for (unsigned int a = 0; a < 3; ++a)
+                    J[a][c] += d * X[I][a];
+                }
+            }
+          r += p;
+          if (!(determinant(J) > 0))
+            return false;
+          const Tensor<1, 3> dxi = invert(J) * r;
+          for (unsigned int c = 0; c < 3; ++c)
+            xi[c] += dxi[c];
+          if (dxi.norm() < 1e-13)
+            break;
+        }
+      for (unsigned int c = 0; c < 3; ++c)
+        if (std::abs(xi[c]) > 1. + 1e-8)
+          return false;
+      for (unsigned int c = 0; c < 3; ++c)
+        xi[c] = std::max(-1., std::min(1., xi[c]));
+      return true;
+    }
+  } // namespace
+
+
+  // @sect3{Embedding}
+  //
+  // Each process locates the truss nodes in the host body's cells it owns
+  // (an R-tree of the cells' boxes, then the inverse trilinear map); the
+  // claims are gathered, and a node on a face shared by several cells goes
+  // to the cell with the smallest scene-wide id, so every partition embeds
+  // it the same way.
+  void Simulator::setup_rebar()
+  {
+    namespace bg  = boost::geometry;
+    namespace bgi = boost::geometry::index;
+    using BPoint  = bg::model::point<double, 3, bg::cs::cartesian>;
+    using Box     = bg::model::box<BPoint>;
+    rebars.assign(rebar_layouts.size(), {});
+    for (unsigned int r = 0; r < rebar_layouts.size(); ++r)
+      {
+        const auto    &layout = rebar_layouts[r];
+        auto          &T      = rebars[r];
+        unsigned int   host   = 0;
+        while (bodies[host].name != layout.host)
+          ++host;
+        if (bodies[host].is_rigid())
+          throw InputError(scene_file + ": subsection 'Rebar " + layout.name +
+                           "': the host body is rigid");
+
+        // Nodes and elements: every polyline segment cut into pieces no
+        // longer than the element length.
+        for (const auto &line : layout.polylines())
+          {
+            T.X.push_back(line[0]);
+            for (unsigned int k = 0; k + 1 < line.size(); ++k)
+              {
+                const double       len = line[k].distance(line[k + 1]);
+                const unsigned int n   = std::max(1., std::ceil(len / layout.element_length - 1e-9));
+                for (unsigned int i = 1; i <= n; ++i)
+                  {
+                    T.X.push_back(line[k] + (double(i) / n) * (line[k + 1] - line[k]));
+                    T.elements.push_back({{static_cast<unsigned int>(T.X.size() - 2),
+                                           static_cast<unsigned int>(T.X.size() - 1)}});
+                  }
+              }
+          }
+        for (const auto &e : T.elements)
+          T.reference_length.push_back(T.X[e[0]].distance(T.X[e[1]]));
+        T.length    = T.reference_length;
+        T.stress    = std::vector<double>(T.elements.size(), 0.);
+        T.force     = T.stress;
+        T.energy    = T.stress;
+        T.n_history = layout.material->n_uniaxial_history();
+        T.history.assign(T.n_history * T.elements.size(), 0.);
+
+        // Locate the nodes in the owned host cells.
+        std::vector<std::pair<Box, unsigned long>> boxes;
+        std::map<unsigned long, std::array<Point<3>, 8>> vertices;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->material_id() == host)
+            {
+              const unsigned long id = cell->id().get_coarse_cell_id();
+              std::array<Point<3>, 8> X;
+              BPoint lo(1e300, 1e300, 1e300), hi(-1e300, -1e300, -1e300);
+              for (unsigned int v = 0; v < 8; ++v)
+                {
+                  X[v] = cell->vertex(v);
+                  bg::set<0>(lo, std::min(bg::get<0>(lo), X[v][0]));
+                  bg::set<1>(lo, std::min(bg::get<1>(lo), X[v][1]));
+                  bg::set<2>(lo, std::min(bg::get<2>(lo), X[v][2]));
+                  bg::set<0>(hi, std::max(bg::get<0>(hi), X[v][0]));
+                  bg::set<1>(hi, std::max(bg::get<1>(hi), X[v][1]));
+                  bg::set<2>(hi, std::max(bg::get<2>(hi), X[v][2]));
+                }
+              vertices[id] = X;
+              boxes.emplace_back(Box(lo, hi), id);
+            }
+        const bgi::rtree<std::pair<Box, unsigned long>, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
+        std::vector<double> claims;
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          {
+            const double eps = 1e-9 * (1. + T.X[i].norm());
+            const Box    q(BPoint(T.X[i][0] - eps, T.X[i][1] - eps, T.X[i][2] - eps),
+                        BPoint(T.X[i][0] + eps, T.X[i][1] + eps, T.X[i][2] + eps));
+            std::vector<std::pair<Box, unsigned long>> hits;
+            tree.query(bgi::intersects(q), std::back_inserter(hits));
+            for (const auto &[box, id] : hits)
+              {
+                std::array<double, 3> xi;
+                if (inverse_map(vertices[id], T.X[i], xi))
+                  claims.insert(claims.end(), {double(i), double(id), xi[0], xi[1], xi[2]});
+              }
+          }
+        T.host_cell.assign(T.X.size(), static_cast<unsigned long>(-1));
+        T.xi.assign(T.X.size(), {{0., 0., 0.}});
+        for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, claims))
+          for (std::size_t k = 0; k + 5 <= part.size(); k += 5)
+            {
+              const unsigned int  i  = static_cast<unsigned int>(part[k]);
+              const unsigned long id = static_cast<unsigned long>(part[k + 1]);
+              if (id < T.host_cell[i])
+                {
+                  T.host_cell[i] = id;
+                  T.xi[i]        = {{part[k + 2], part[k + 3], part[k + 4]}};
+                }
+            }
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          if (T.host_cell[i] == static_cast<unsigned long>(-1))
+            {
+              std::ostringstream s;
+              s << scene_file << ": subsection 'Rebar " << layout.name << "': the bar point ("
+                << T.X[i] << ") lies outside the host body '" << layout.host
+                << "' (check the cover, the member corners or the polyline file)";
+              throw InputError(s.str());
+            }
+
+        // The host cells' vertex dofs on this process.
+        std::map<unsigned long, std::pair<std::array<long, 8>, bool>> local;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial() && cell->material_id() == host)
+            {
+              std::array<long, 8> dofs;
+              for (unsigned int v = 0; v < 8; ++v)
+                dofs[v] = position.get_partitioner()->global_to_local(cell->vertex_dof_index(v, 0));
+              local[cell->id().get_coarse_cell_id()] = {dofs, cell->is_locally_owned()};
+            }
+        T.host_dofs.assign(T.X.size(), std::array<long, 8>{{-1, -1, -1, -1, -1, -1, -1, -1}});
+        T.host_owned.assign(T.X.size(), false);
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          {
+            const auto it = local.find(T.host_cell[i]);
+            if (it != local.end())
+              {
+                T.host_dofs[i]  = it->second.first;
+                T.host_owned[i] = it->second.second;
+              }
+          }
+        pcout << "  rebar '" << layout.name << "' in '" << layout.host << "': "
+              << layout.ratio_summary() << "; " << T.elements.size() << " truss elements"
+              << std::endl;
+      }
+  }
+
+
+  // Rebar mass m_r = rho A (half the adjacent element lengths) to the host
+  // nodes as N_I m_r: the embedded constraint conserves momentum.
+  void Simulator::add_rebar_mass()
+  {
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      {
+        const auto         &T   = rebars[r];
+        const double        rho = rebar_layouts[r].material->density();
+        const double        A   = rebar_layouts[r].area();
+        std::vector<double> m(T.X.size(), 0.);
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          for (const unsigned int i : T.elements[k])
+            m[i] += 0.5 * rho * A * T.reference_length[k];
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          if (T.host_dofs[i][0] >= 0)
+            {
+              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              for (unsigned int I = 0; I < 8; ++I)
+                if (T.host_dofs[i][I] < long(mass.locally_owned_size()))
+                  for (unsigned int d = 0; d < 3; ++d)
+                    mass.local_element(T.host_dofs[i][I] + d) += N[I] * m[i];
+            }
+      }
+  }
+
+
+  // @sect3{Truss forces}
+  //
+  // The nodes' positions x_r = sum N_I x_I come from the processes owning
+  // their host cells and are summed over all; every process then evaluates
+  // every truss element (T3D2: axial strain increment ln(l / l_old) from
+  // the current length, the steel's uniaxial form, force N = sigma A L0 / l
+  // for the Cauchy stress of a bar of constant volume) and adds N_I f_r to
+  // the host nodes it owns, in element order. Work of the axial force,
+  // (N_old + N) / 2 (l - l_old), goes to the internal energy.
+  double Simulator::compute_rebar_forces(const double dt)
+  {
+    double dt_crit = 1e300;
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      {
+        auto                 &T        = rebars[r];
+        const auto           &material = *rebar_layouts[r].material;
+        const double          A        = rebar_layouts[r].area();
+        const double          c        = std::sqrt(material.youngs_modulus() / material.density());
+        const unsigned int    n        = T.X.size();
+        std::vector<double>   xr(3 * n, 0.), fr(3 * n, 0.);
+        for (unsigned int i = 0; i < n; ++i)
+          if (T.host_owned[i])
+            {
+              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              for (unsigned int I = 0; I < 8; ++I)
+                for (unsigned int d = 0; d < 3; ++d)
+                  xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
+            }
+        Utilities::MPI::sum(xr, mpi_communicator, xr);
+        double work = 0;
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          {
+            const unsigned int a = T.elements[k][0], b = T.elements[k][1];
+            Tensor<1, 3>       d;
+            for (unsigned int q = 0; q < 3; ++q)
+              d[q] = xr[3 * b + q] - xr[3 * a + q];
+            const double l = d.norm();
+            if (dt > 0)
+              {
+                double *h     = T.n_history ? &T.history[T.n_history * k] : nullptr;
+                T.stress[k]   = material.update_uniaxial_stress(std::log(l / T.length[k]), dt, T.stress[k], h);
+                const double N = T.stress[k] * A * T.reference_length[k] / l;
+                const double w = 0.5 * (T.force[k] + N) * (l - T.length[k]);
+                T.energy[k] += w;
+                work += w;
+                T.force[k]  = N;
+                T.length[k] = l;
+              }
+            const Tensor<1, 3> f = (T.force[k] / l) * d;
+            for (unsigned int q = 0; q < 3; ++q)
+              {
+                fr[3 * a + q] += f[q];
+                fr[3 * b + q] -= f[q];
+              }
+            dt_crit = std::min(dt_crit, l / c);
+          }
+        energies.internal += work;
+        for (unsigned int i = 0; i < n; ++i)
+          if (T.host_dofs[i][0] >= 0)
+            {
+              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              for (unsigned int I = 0; I < 8; ++I)
+                if (T.host_dofs[i][I] < long(force.locally_owned_size()))
+                  for (unsigned int d = 0; d < 3; ++d)
+                    force.local_element(T.host_dofs[i][I] + d) += N[I] * fr[3 * i + d];
+            }
+      }
+    return dt_crit;
+  }
+
+
+  void Simulator::write_rebar_history(const double t)
+  {
+    if (rebar_files.empty())
+      for (const auto &layout : rebar_layouts)
+        {
+          rebar_files.emplace_back(output_directory + "/rebar_" + layout.name + ".csv");
+          rebar_files.back() << "time,max_axial_force,min_axial_force,max_stress,min_stress,"
+                                "max_effective_plastic_strain,probe_axial_force,probe_stress\n";
+        }
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      {
+        const auto  &T     = rebars[r];
+        const auto   names = rebar_layouts[r].material->uniaxial_history_names();
+        const auto   it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
+        double       fmax = -1e300, fmin = 1e300, smax = -1e300, smin = 1e300, ep = 0;
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          {
+            fmax = std::max(fmax, T.force[k]);
+            fmin = std::min(fmin, T.force[k]);
+            smax = std::max(smax, T.stress[k]);
+            smin = std::min(smin, T.stress[k]);
+            if (it != names.end())
+              ep = std::max(ep, T.history[T.n_history * k + (it - names.begin())]);
+          }
+        // The probed element: nearest midpoint (reference) to the point.
+        unsigned int probe = 0;
+        double       best  = 1e300;
+        if (rebar_layouts[r].has_probe)
+          for (unsigned int k = 0; k < T.elements.size(); ++k)
+            {
+              const double dist =
+                rebar_layouts[r].probe.distance(0.5 * (T.X[T.elements[k][0]] + T.X[T.elements[k][1]]));
+              if (dist < best - 1e-12)
+                {
+                  best  = dist;
+                  probe = k;
+                }
+            }
+        rebar_files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
+                       << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe]
+                       << '\n';
+      }
+  }
+} // namespace anvil
