@@ -284,6 +284,8 @@ namespace anvil
         const std::string pvtu = data_out.write_vtu_with_pvtu_record(
           output_directory + "/", basename, output_count, mpi_communicator, 4);
         pvd_records.emplace_back(t, pvtu);
+        if (!rebars.empty())
+          output_rebar(t, output_count);
         ++output_count;
       }
     else

@@ -6,12 +6,15 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/utilities.h>
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <map>
 
@@ -260,6 +263,7 @@ namespace anvil
                   xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
             }
         Utilities::MPI::sum(xr, mpi_communicator, xr);
+        T.x        = xr;
         double work = 0;
         for (unsigned int k = 0; k < T.elements.size(); ++k)
           {
@@ -299,6 +303,59 @@ namespace anvil
             }
       }
     return dt_crit;
+  }
+
+
+  void Simulator::output_rebar(const double t, const unsigned int count)
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      {
+        auto &T = rebars[r];
+        if (T.x.empty())
+          {
+            T.x.resize(3 * T.X.size());
+            for (unsigned int i = 0; i < T.X.size(); ++i)
+              for (unsigned int d = 0; d < 3; ++d)
+                T.x[3 * i + d] = T.X[i][d];
+          }
+        const auto  names = rebar_layouts[r].material->uniaxial_history_names();
+        const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
+        std::string file  = "rebar_" + rebar_layouts[r].name + "_" + Utilities::int_to_string(count, 4) + ".vtu";
+        std::ofstream out(output_directory + "/" + file);
+        out << std::setprecision(10)
+            << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+            << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << T.X.size() << "\" NumberOfCells=\""
+            << T.elements.size() << "\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          out << T.x[3 * i] << ' ' << T.x[3 * i + 1] << ' ' << T.x[3 * i + 2] << '\n';
+        out << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+        for (const auto &e : T.elements)
+          out << e[0] << ' ' << e[1] << '\n';
+        out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          out << 2 * (k + 1) << '\n';
+        out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          out << "3\n"; // VTK_LINE
+        out << "</DataArray>\n</Cells>\n<CellData>\n";
+        auto field = [&](const std::string &name, auto value) {
+          out << "<DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+          for (unsigned int k = 0; k < T.elements.size(); ++k)
+            out << value(k) << '\n';
+          out << "</DataArray>\n";
+        };
+        field("axial_force", [&](unsigned int k) { return T.force[k]; });
+        field("axial_stress", [&](unsigned int k) { return T.stress[k]; });
+        field("effective_plastic_strain", [&](unsigned int k) {
+          return it == names.end() ? 0. : T.history[T.n_history * k + (it - names.begin())];
+        });
+        out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+        T.pvd_records.emplace_back(t, file);
+        std::ofstream pvd(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd");
+        DataOutBase::write_pvd_record(pvd, T.pvd_records);
+      }
   }
 
 

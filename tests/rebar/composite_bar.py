@@ -10,7 +10,8 @@ overlaps the host, as ABAQUS's embedded elements do),
 checked at mid-height (truss element and concrete element there) within
 1 %, for a mesh with nodes on the bar (4 x 4 across: conforming, the bar on
 a node line) and one without (5 x 5: the bar through element centres).
-Also: a reinforced block flying at 1 m/s keeps its momentum to round-off
+The last rebar_bar_NNNN.vtu (line cells) is read back and agrees with
+rebar_bar.csv. Also: a reinforced block flying at 1 m/s keeps its momentum to round-off
 (rebar mass and forces go to the host through the shape functions), and
 np = 2 gives the composite bar's histories of np = 1 (relative 1e-8), the
 bar crossing the partition.
@@ -119,6 +120,16 @@ for label, n in (("conforming (4 x 4, bar on a node line)", 4), ("non-conforming
     # the balance is checked once they have grown (t >= 2 ms).
     late = [b for t, b in zip(r["energy"]["time"], r["energy"]["balance_error"]) if t >= 2e-3]
     c.check_below(f"{label}: largest energy balance error after 2 ms", max(late), 0.01)
+
+# The rebar field output: line cells with the axial force, read back.
+import glob
+import xml.etree.ElementTree as ET
+vtus = sorted(glob.glob(os.path.join(args.work_dir, "output", "composite_5", "rebar_bar_*.vtu")))
+piece = ET.parse(vtus[-1]).getroot().find("UnstructuredGrid/Piece")
+forces = [float(v) for v in piece.find("CellData/DataArray[@Name='axial_force']").text.split()]
+c.check("rebar_bar_NNNN.vtu: line cells", float(piece.get("NumberOfCells")), 50, 0)
+c.check("rebar_bar_NNNN.vtu: largest axial force / rebar_bar.csv", max(forces),
+        results[5]["rebar_bar"]["max_axial_force"][-1], 1e-9, relative=True)
 
 par = run("composite_5_np2", np=2, n=5)
 c.check_below("np = 2 against np = 1: largest relative difference of rebar_bar.csv",

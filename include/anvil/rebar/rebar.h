@@ -90,6 +90,10 @@ namespace anvil::Rebar
     std::vector<double> stress, force, energy;
     std::vector<double> history;
     unsigned int        n_history = 0;
+    /** Current node positions (3 per node), as last evaluated. */
+    std::vector<double> x;
+    /** Output records (time, file) of rebar_NAME.pvd. */
+    std::vector<std::pair<double, std::string>> pvd_records;
 
     /** Embedding: host cell (scene-wide coarse id) and natural coordinates
         in [-1,1]^3 of each node. */

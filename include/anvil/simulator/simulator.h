@@ -109,6 +109,9 @@ namespace anvil
     double compute_rebar_forces(double dt_previous);
     void   add_rebar_mass();
     void   write_rebar_history(double time);
+    /** rebar_NAME_NNNN.vtu (line cells: axial force, stress, effective
+        plastic strain) and rebar_NAME.pvd, written by rank 0. */
+    void   output_rebar(double time, unsigned int count);
     void setup_probes();
     void prepare_output_directory();
 
