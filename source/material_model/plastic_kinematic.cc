@@ -259,6 +259,79 @@ namespace anvil::MaterialModel
   }
 
 
+  void PlasticKinematic::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                                    const double dt,
+                                                    double (&s)[6][batch_size],
+                                                    double *const (&h)[batch_size]) const
+  {
+    constexpr unsigned int W = batch_size;
+    // Gather the history (back stress, eps_p, plastic work, rate) into
+    // lanes.
+    double alpha[6][W], eps_p[W], work[W], rate[W], R[W];
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        for (unsigned int k = 0; k < 6; ++k)
+          alpha[k][l] = h[l][k];
+        eps_p[l] = h[l][6];
+        work[l]  = h[l][7];
+        rate[l]  = h[l][8];
+      }
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        const double tr = D[0][l] + D[1][l] + D[2][l];
+        for (unsigned int k = 0; k < 3; ++k)
+          s[k][l] += (lambda * tr + 2. * mu * D[k][l]) * dt;
+        for (unsigned int k = 3; k < 6; ++k)
+          s[k][l] += 2. * mu * D[k][l] * dt;
+        R[l] = 1.;
+      }
+    if (law.rate_effects)
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          const double d3 = (D[0][l] + D[1][l] + D[2][l]) / 3.;
+          const double dd = (D[0][l] - d3) * (D[0][l] - d3) + (D[1][l] - d3) * (D[1][l] - d3) +
+                            (D[2][l] - d3) * (D[2][l] - d3) +
+                            2. * (D[3][l] * D[3][l] + D[4][l] * D[4][l] + D[5][l] * D[5][l]);
+          rate[l] = std::sqrt(2. / 3. * dd);
+          R[l]    = law.rate_factor(rate[l]);
+        }
+    const double Hk = law.kinematic_modulus();
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        const double p = (s[0][l] + s[1][l] + s[2][l]) / 3.;
+        double       xi[6];
+        for (unsigned int k = 0; k < 6; ++k)
+          xi[k] = s[k][l] - (k < 3 ? p : 0.) - alpha[k][l];
+        const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
+                          2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
+        const double norm   = std::sqrt(xx);
+        const double q      = std::sqrt(1.5) * norm;
+        const double excess = q - law.yield_stress(eps_p[l], R[l]);
+        const double dep    = excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
+        const double inv    = norm > 0 ? 1. / norm : 0.;
+        const double a      = 2. * mu * std::sqrt(1.5) * dep * inv;
+        const double b      = std::sqrt(2. / 3.) * Hk * dep * inv;
+        double       w      = 0;
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            s[k][l] -= a * xi[k];
+            alpha[k][l] += b * xi[k];
+            w += (k < 3 ? 1. : 2.) * s[k][l] * std::sqrt(1.5) * dep * xi[k] * inv;
+          }
+        eps_p[l] += dep;
+        work[l] += w;
+      }
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        for (unsigned int k = 0; k < 6; ++k)
+          h[l][k] = alpha[k][l];
+        h[l][6] = eps_p[l];
+        h[l][7] = work[l];
+        h[l][8] = rate[l];
+      }
+  }
+
+
   // @sect3{Total Lagrangian: the same update on the reference mesh}
   void PlasticKinematic::compute_pk2_stress(const double *F,
                                             const double *E,
