@@ -67,8 +67,20 @@ namespace anvil::Rebar
                       "perfect bond",
                       Patterns::Selection("perfect bond|bond-slip"),
                       "'perfect bond': the bars follow the host (embedded, "
-                      "common-node model of the seed). 'bond-slip' (seed "
-                      "Eq. (68)) is not available yet.");
+                      "common-node model of the seed). 'bond-slip': the bars "
+                      "have their own nodes, tied to the host across the bar "
+                      "and along it by the bond law of seed Eq. (68).");
+    prm.declare_entry("Bond modulus", "5e10", Patterns::Double(0.),
+                      "G_s of seed Eq. (68), bond stress per unit slip (50 MPa/mm). "
+                      "Units: Pa/m.");
+    prm.declare_entry("Slip at bond strength", "3.6e-4", Patterns::Double(0.),
+                      "S_max of seed Eq. (68) (0.36 mm); tau_max = G_s S_max. Units: m.");
+    prm.declare_entry("Bond damage rate", "200", Patterns::Double(0.),
+                      "h_dmg of seed Eq. (68) per unit of the slip D accumulated beyond "
+                      "the elastic range (0.2 per mm). Units: 1/m.");
+    prm.declare_entry("Pull velocity", "0, 0, 0", Patterns::List(Patterns::Double(), 3, 3),
+                      "Bond-slip: velocity imposed on the last node of every bar from "
+                      "t = 0 (a pull-out test); zero: none. Units: m/s.");
     prm.enter_subsection("Material");
     MaterialModel::declare_parameters(prm);
     prm.leave_subsection();
@@ -112,9 +124,20 @@ namespace anvil::Rebar
       throw InputError(at + "'Host body' is required");
     if (!(diameter > 0) || !(element_length > 0))
       throw InputError(at + "'Diameter' and 'Element length' must be positive");
-    if (prm.get("Coupling") == "bond-slip")
-      throw InputError(at + "'Coupling = bond-slip' (seed Eq. (68)) is not available yet; "
-                            "allowed now: perfect bond");
+    bond_slip    = prm.get("Coupling") == "bond-slip";
+    bond_modulus = prm.get_double("Bond modulus");
+    slip_at_peak = prm.get_double("Slip at bond strength");
+    damage_rate  = prm.get_double("Bond damage rate");
+    {
+      const Point<3> v = point("Pull velocity");
+      pull_velocity    = v;
+      pulled           = v.norm() > 0;
+    }
+    if (bond_slip && (!(bond_modulus > 0) || !(slip_at_peak > 0)))
+      throw InputError(at + "'Bond modulus' and 'Slip at bond strength' must be positive");
+    if (pulled && !bond_slip)
+      throw InputError(at + "'Pull velocity' needs 'Coupling = bond-slip' (perfectly bonded "
+                            "bars follow the host)");
     if (layout == "stirrups" && !(spacing > 0))
       throw InputError(at + "stirrups need a positive 'Spacing'");
     if (layout == "polylines" && !std::ifstream(file_name))

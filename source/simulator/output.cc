@@ -56,6 +56,18 @@ namespace anvil
         momentum[3 * dof_body[i] + dof_component[i]] +=
           mass.local_element(i) * velocity.local_element(i) - 0.5 * dt * force.local_element(i);
     Utilities::MPI::sum(momentum, mpi_communicator, momentum);
+    // Bond-slip bars (replicated): their momentum with the host body's.
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      if (rebar_layouts[r].bond_slip)
+        {
+          unsigned int host = 0;
+          while (bodies[host].name != rebar_layouts[r].host)
+            ++host;
+          const auto &T = rebars[r];
+          for (unsigned int j = 0; j < T.vs.size(); ++j)
+            momentum[3 * host + j % 3] +=
+              T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
+        }
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].is_rigid())
         {
@@ -70,7 +82,7 @@ namespace anvil
     if (!energy_file.is_open())
       {
         energy_file.open(output_directory + "/energy.csv");
-        energy_file << "time,kinetic,internal,hourglass,contact,friction,eroded,"
+        energy_file << "time,kinetic,internal,hourglass,contact,friction,eroded,bond,"
                        "external_work,total,balance_error\n";
         momentum_file.open(output_directory + "/momentum.csv");
         momentum_file << "time";
@@ -94,7 +106,7 @@ namespace anvil
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
                 << energies.internal << ',' << energies.hourglass << ','
                 << energies.contact << ',' << energies.friction << ','
-                << energies.eroded << ',' << energies.external_work << ',' << energies.total() << ','
+                << energies.eroded << ',' << energies.bond << ',' << energies.external_work << ',' << energies.total() << ','
                 << balance_error << '\n';
     momentum_file << std::setprecision(15) << t;
     double total[3] = {0, 0, 0};

@@ -201,6 +201,38 @@ namespace anvil
                 T.host_owned[i] = it->second.second;
               }
           }
+        if (layout.bond_slip)
+          {
+            const unsigned int n = T.X.size();
+            T.xs.resize(3 * n);
+            T.vs.assign(3 * n, 0.);
+            T.fs.assign(3 * n, 0.);
+            T.xh.assign(3 * n, 0.);
+            T.bond_force.assign(3 * n, 0.);
+            T.ms.assign(n, 0.);
+            T.plastic_slip.assign(n, 0.);
+            T.damage.assign(n, 0.);
+            T.bond_stress.assign(n, 0.);
+            T.slip.assign(n, 0.);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  T.xs[3 * i + d] = T.X[i][d];
+                  T.vs[3 * i + d] = bodies[host].initial_velocity[d];
+                }
+            for (unsigned int k = 0; k < T.elements.size(); ++k)
+              for (const unsigned int i : T.elements[k])
+                T.ms[i] += 0.5 * layout.material->density() * layout.area() * T.reference_length[k];
+            // The last node of every bar, for a pull-out.
+            if (layout.pulled)
+              for (unsigned int k = 0; k < T.elements.size(); ++k)
+                if (k + 1 == T.elements.size() || T.elements[k + 1][0] != T.elements[k][1])
+                  {
+                    T.pulled_nodes.push_back(T.elements[k][1]);
+                    for (unsigned int d = 0; d < 3; ++d)
+                      T.vs[3 * T.elements[k][1] + d] = layout.pull_velocity[d];
+                  }
+          }
         pcout << "  rebar '" << layout.name << "' in '" << layout.host << "': "
               << layout.ratio_summary() << "; " << T.elements.size() << " truss elements"
               << std::endl;
@@ -214,6 +246,8 @@ namespace anvil
   {
     for (unsigned int r = 0; r < rebars.size(); ++r)
       {
+        if (rebar_layouts[r].bond_slip)
+          continue; // the bars' own nodes carry their mass
         const auto         &T   = rebars[r];
         const double        rho = rebar_layouts[r].material->density();
         const double        A   = rebar_layouts[r].area();
@@ -263,6 +297,13 @@ namespace anvil
                   xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
             }
         Utilities::MPI::sum(xr, mpi_communicator, xr);
+        const bool slip = rebar_layouts[r].bond_slip;
+        if (slip)
+          {
+            // The bars move on their own; xr are the host points they sit in.
+            T.xh = xr;
+            xr   = T.xs;
+          }
         T.x        = xr;
         double work = 0;
         for (unsigned int k = 0; k < T.elements.size(); ++k)
@@ -292,6 +333,90 @@ namespace anvil
             dt_crit = std::min(dt_crit, l / c);
           }
         energies.internal += work;
+        if (slip)
+          {
+            // @sect4{Bond-slip, seed Eq. (68)}
+            // Along the bar: slip S = (x_bar - x_host) . t with t the bar's
+            // current tangent at the node; bond stress by the law below,
+            // force tau pi d l_trib; across the bar the node is tied to the
+            // host by a spring of the same stiffness G_s pi d l_trib. The
+            // reaction goes to the host through the shape functions; the
+            // work of the bond forces is the 'bond' energy.
+            const auto  &L       = rebar_layouts[r];
+            const double tau_max = L.bond_modulus * L.slip_at_peak;
+            std::vector<double> trib(n, 0.);
+            std::vector<Tensor<1, 3>> tangent(n);
+            for (unsigned int k = 0; k < T.elements.size(); ++k)
+              {
+                const unsigned int a = T.elements[k][0], b = T.elements[k][1];
+                Tensor<1, 3>       dd;
+                for (unsigned int q = 0; q < 3; ++q)
+                  dd[q] = xr[3 * b + q] - xr[3 * a + q];
+                dd /= dd.norm();
+                tangent[a] += dd;
+                tangent[b] += dd;
+                trib[a] += 0.5 * T.reference_length[k];
+                trib[b] += 0.5 * T.reference_length[k];
+              }
+            const double perimeter = 3.14159265358979323846 * L.diameter;
+            double       bond_work = 0;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const Tensor<1, 3> t = tangent[i] / tangent[i].norm();
+                Tensor<1, 3>       u;
+                for (unsigned int q = 0; q < 3; ++q)
+                  u[q] = xr[3 * i + q] - T.xh[3 * i + q];
+                const double S = u * t;
+                if (dt > 0)
+                  {
+                    // Elastic predictor from the plastic slip; beyond the
+                    // (softening) strength tau_max exp(-h D) the slip goes
+                    // plastic and D accumulates it. Unloading follows G_s.
+                    const double trial = L.bond_modulus * (S - T.plastic_slip[i]);
+                    const double limit = tau_max * std::exp(-L.damage_rate * T.damage[i]);
+                    double       tau   = trial;
+                    if (std::abs(trial) > limit)
+                      {
+                        tau                   = trial > 0 ? limit : -limit;
+                        const double dsp      = S - T.plastic_slip[i] - tau / L.bond_modulus;
+                        T.plastic_slip[i] += dsp;
+                        T.damage[i] += std::abs(dsp);
+                      }
+                    T.bond_stress[i] = tau;
+                    T.slip[i]        = S;
+                  }
+                const double       k_t = L.bond_modulus * perimeter * trib[i];
+                const Tensor<1, 3> f   = -(T.bond_stress[i] * perimeter * trib[i]) * t - k_t * (u - S * t);
+                // Work done on the bond over the step (trapezoidal rule).
+                Tensor<1, 3> f_old, du;
+                for (unsigned int q = 0; q < 3; ++q)
+                  {
+                    f_old[q] = T.bond_force[3 * i + q];
+                    T.bond_force[3 * i + q] = f[q];
+                  }
+                if (dt > 0)
+                  {
+                    for (unsigned int q = 0; q < 3; ++q)
+                      du[q] = u[q] - (T.x_bond_old.empty() ? 0. : T.x_bond_old[3 * i + q]);
+                    bond_work -= 0.5 * (f_old + f) * du;
+                  }
+                if (T.x_bond_old.empty())
+                  T.x_bond_old.assign(3 * n, 0.);
+                for (unsigned int q = 0; q < 3; ++q)
+                  {
+                    T.x_bond_old[3 * i + q] = u[q];
+                    fr[3 * i + q] += f[q];
+                  }
+                dt_crit = std::min(dt_crit, 2. * std::sqrt(T.ms[i] / (2. * k_t)));
+              }
+            energies.bond += bond_work;
+            // The bars' nodes keep their forces; the host gets the bond
+            // reactions, -f, through the shape functions.
+            T.fs = fr;
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int q = 0; q < 3; ++q)
+                fr[3 * i + q] = -T.bond_force[3 * i + q];
+          }
         for (unsigned int i = 0; i < n; ++i)
           if (T.host_dofs[i][0] >= 0)
             {
@@ -359,6 +484,62 @@ namespace anvil
   }
 
 
+  // @sect3{The bars' own nodes (bond-slip)}
+  //
+  // Replicated on every process and advanced there by the same central
+  // differences as the host nodes; a pulled node keeps its velocity, and
+  // the work of the force that holds it is external work.
+  void Simulator::update_rebar_velocity(const double dt_previous,
+                                        const double dt,
+                                        double      &kinetic,
+                                        double      &work)
+  {
+    const double dt_avg = 0.5 * (dt_previous + dt);
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      if (rebar_layouts[r].bond_slip)
+        {
+          auto             &T = rebars[r];
+          std::vector<bool> pulled(T.X.size(), false);
+          for (const unsigned int i : T.pulled_nodes)
+            pulled[i] = true;
+          for (unsigned int i = 0; i < T.X.size(); ++i)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const unsigned int j     = 3 * i + d;
+                const double       v_old = T.vs[j];
+                const double       f     = T.fs[j] + T.ms[i] * gravity[d];
+                if (pulled[i])
+                  {
+                    const double vp = rebar_layouts[r].pull_velocity[d];
+                    if (dt_avg > 0)
+                      work += T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg * vp * dt;
+                    T.vs[j] = vp;
+                  }
+                else
+                  T.vs[j] += dt_avg * f / T.ms[i];
+                kinetic += 0.5 * T.ms[i] * v_old * T.vs[j];
+              }
+        }
+  }
+
+
+  void Simulator::update_rebar_position(const double dt)
+  {
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      if (rebar_layouts[r].bond_slip)
+        {
+          auto &T = rebars[r];
+          for (unsigned int i = 0; i < T.X.size(); ++i)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                if (gravity.norm() > 0)
+                  energies.external_work += T.ms[i] * gravity[d] * dt * T.vs[3 * i + d];
+                T.xs[3 * i + d] += dt * T.vs[3 * i + d];
+              }
+        }
+  }
+
+
   void Simulator::write_rebar_history(const double t)
   {
     if (rebar_files.empty())
@@ -366,7 +547,8 @@ namespace anvil
         {
           rebar_files.emplace_back(output_directory + "/rebar_" + layout.name + ".csv");
           rebar_files.back() << "time,max_axial_force,min_axial_force,max_stress,min_stress,"
-                                "max_effective_plastic_strain,probe_axial_force,probe_stress\n";
+                                "max_effective_plastic_strain,probe_axial_force,probe_stress,probe_slip,"
+                                "probe_bond_stress\n";
         }
     for (unsigned int r = 0; r < rebars.size(); ++r)
       {
@@ -398,8 +580,11 @@ namespace anvil
                 }
             }
         rebar_files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
-                       << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe]
-                       << '\n';
+                       << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe];
+        // Bond-slip: slip and bond stress at the probed element's first node.
+        const unsigned int pn = T.elements[probe][0];
+        rebar_files[r] << ',' << (T.slip.empty() ? 0. : T.slip[pn]) << ','
+                       << (T.bond_stress.empty() ? 0. : T.bond_stress[pn]) << '\n';
       }
   }
 } // namespace anvil

@@ -268,6 +268,8 @@ namespace anvil
     double rigid_kinetic = 0, rigid_work = 0;
     if (!rigid_dof.empty())
       advance_rigid_bodies(dt_previous, dt, rigid_kinetic, rigid_work);
+    if (!rebars.empty())
+      update_rebar_velocity(dt_previous, dt, rigid_kinetic, rigid_work);
     energies.kinetic = 0.5 * sums[0] + rigid_kinetic;
     energies.external_work += sums[1] + rigid_work;
   }
@@ -341,6 +343,8 @@ namespace anvil
     const double      *v = velocity.begin();
     for (unsigned int i = 0; i < n; ++i)
       x[i] += dt * v[i];
+    if (!rebars.empty())
+      update_rebar_position(dt);
     // Work of gravity over the step, m g . (x^{n+1} - x^n): exact for a
     // constant force.
     if (gravity.norm() > 0)
@@ -550,6 +554,9 @@ namespace anvil
       if (rigid_dof.empty() || !rigid_dof[i])
         kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
     energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
+    for (unsigned int r = 0; r < rebars.size(); ++r)
+      for (unsigned int j = 0; j < rebars[r].vs.size(); ++j)
+        energies.kinetic += 0.5 * rebars[r].ms[j / 3] * rebars[r].vs[j] * rebars[r].vs[j];
     // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
     for (const auto &b : bodies)
       if (b.is_rigid())

@@ -54,6 +54,17 @@ namespace anvil::Rebar
     std::string                                layout;
     double                                     diameter       = 0;
     double                                     element_length = 0;
+    /** Bond-slip (seed Eq. (68)) instead of perfect bond, and its law:
+        tau = G_s S up to S_max, then tau_max exp(-h D) with D the
+        accumulated slip beyond the elastic range; elastic unloading with
+        G_s. */
+    bool   bond_slip     = false;
+    double bond_modulus  = 5e10;
+    double slip_at_peak  = 3.6e-4;
+    double damage_rate   = 200.;
+    /** Velocity imposed on the last node of every bar (pull-out tests). */
+    dealii::Tensor<1, 3> pull_velocity;
+    bool                 pulled = false;
     /** Optional point whose nearest truss element rebar_NAME.csv reports. */
     bool             has_probe = false;
     dealii::Point<3> probe;
@@ -92,6 +103,15 @@ namespace anvil::Rebar
     unsigned int        n_history = 0;
     /** Current node positions (3 per node), as last evaluated. */
     std::vector<double> x;
+    /** Bond-slip: the bars' own nodes (positions, half-step velocities,
+        forces, lumped masses), the host material points they sit in, and
+        per node the plastic slip, accumulated slip beyond the elastic
+        range, bond stress, slip, bond force; the pulled nodes. */
+    std::vector<double>       xs, vs, fs, ms, xh;
+    std::vector<double>       plastic_slip, damage, bond_stress, slip, bond_force;
+    std::vector<unsigned int> pulled_nodes;
+    /** Relative displacement bar - host at the last evaluation (3 per node). */
+    std::vector<double> x_bond_old;
     /** Output records (time, file) of rebar_NAME.pvd. */
     std::vector<std::pair<double, std::string>> pvd_records;
 

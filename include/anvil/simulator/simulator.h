@@ -38,10 +38,13 @@ namespace anvil
     double friction      = 0;
     /** Energy held by eroded elements when they were removed. */
     double eroded        = 0;
+    /** Work done on the bond of bond-slip reinforcement (elastic and
+        dissipated). */
+    double bond          = 0;
     double external_work = 0;
     double total() const
     {
-      return kinetic + internal + hourglass + contact + friction + eroded;
+      return kinetic + internal + hourglass + contact + friction + eroded + bond;
     }
   };
 
@@ -112,6 +115,10 @@ namespace anvil
     /** rebar_NAME_NNNN.vtu (line cells: axial force, stress, effective
         plastic strain) and rebar_NAME.pvd, written by rank 0. */
     void   output_rebar(double time, unsigned int count);
+    /** Bond-slip bars: advance their nodes (leapfrog, replicated); the
+        kinetic energy at time n is returned through @p kinetic. */
+    void   update_rebar_velocity(double dt_previous, double dt, double &kinetic, double &work);
+    void   update_rebar_position(double dt);
     void setup_probes();
     void prepare_output_directory();
 
