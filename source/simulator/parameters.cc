@@ -118,7 +118,7 @@ namespace anvil
                         "0.05",
                         Patterns::Double(0.),
                         "The run stops when the total energy has grown by "
-                        "more than this fraction of max(E_kin, E_int, E_0, |W_ext|) "
+                        "more than this fraction of the largest E_kin, E_int, E_0 or |W_ext| so far "
                         "beyond the external work. Units: none.");
       prm.declare_entry("Print wall times",
                         "true",

@@ -216,6 +216,8 @@ namespace anvil
     Energies     energies;
     double       initial_energy = 0;
     double       balance_error  = 0;
+    /** Running maximum of E_kin, E_int, E_0, |W_ext|: the balance scale. */
+    double       energy_scale   = 0;
     double       critical_dt    = 0;
     /** Largest k/m of the contact penalty springs (all pairs); the stable
         step is 2 / sqrt(omega_e^2 + omega_c^2) with omega_e = 2 / dt_e. */
