@@ -476,7 +476,22 @@ namespace anvil
         field("effective_plastic_strain", [&](unsigned int k) {
           return it == names.end() ? 0. : T.history[T.n_history * k + (it - names.begin())];
         });
-        out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+        out << "</CellData>\n";
+        if (!T.slip.empty())
+          {
+            // Bond-slip: slip and bond stress at the nodes.
+            out << "<PointData>\n";
+            for (const auto *v : {&T.slip, &T.bond_stress})
+              {
+                out << "<DataArray type=\"Float64\" Name=\"" << (v == &T.slip ? "slip" : "bond_stress")
+                    << "\" format=\"ascii\">\n";
+                for (const double x : *v)
+                  out << x << '\n';
+                out << "</DataArray>\n";
+              }
+            out << "</PointData>\n";
+          }
+        out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
         T.pvd_records.emplace_back(t, file);
         std::ofstream pvd(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd");
         DataOutBase::write_pvd_record(pvd, T.pvd_records);

@@ -11,7 +11,9 @@ checked at mid-height (truss element and concrete element there) within
 1 %, for a mesh with nodes on the bar (4 x 4 across: conforming, the bar on
 a node line) and one without (5 x 5: the bar through element centres).
 The last rebar_bar_NNNN.vtu (line cells) is read back and agrees with
-rebar_bar.csv. Also: a reinforced block flying at 1 m/s keeps its momentum to round-off
+rebar_bar.csv. The same bar read from a polyline file carries the same
+force (1e-9, the segments' round-off), and a stirrup layout (10 ties at
+0.1 m) prints the transverse ratio 2 A_s / (b s). Also: a reinforced block flying at 1 m/s keeps its momentum to round-off
 (rebar mass and forces go to the host through the shape functions), and
 np = 2 gives the composite bar's histories of np = 1 (relative 1e-8), the
 bar crossing the partition.
@@ -130,6 +132,30 @@ forces = [float(v) for v in piece.find("CellData/DataArray[@Name='axial_force']"
 c.check("rebar_bar_NNNN.vtu: line cells", float(piece.get("NumberOfCells")), 50, 0)
 c.check("rebar_bar_NNNN.vtu: largest axial force / rebar_bar.csv", max(forces),
         results[5]["rebar_bar"]["max_axial_force"][-1], 1e-9, relative=True)
+
+# The same bar from a polyline file, and a stirrup layout's ratios.
+with open(os.path.join(args.work_dir, "bar.txt"), "w") as f:
+    f.write("0.05 0.05 0\n0.05 0.05 0.5\n0.05 0.05 1\n")
+text = open(scene("composite_poly", n=5)).read().replace(
+    "  set Layout = longitudinal", "  set Layout = polylines\n  set File name = bar.txt")
+with open(os.path.join(args.work_dir, "composite_poly.prm"), "w") as f:
+    f.write(text)
+code, out, err = run_anvil(args.anvil, os.path.join(args.work_dir, "composite_poly.prm"), cwd=args.work_dir)
+if c.check_true("polyline layout: anvil exits 0", code == 0, err.strip()[-300:]):
+    r = read_csv(os.path.join(args.work_dir, "output", "composite_poly", "rebar_bar.csv"))
+    c.check("polyline layout: largest axial force / longitudinal layout's", r["max_axial_force"][-1],
+            results[5]["rebar_bar"]["max_axial_force"][-1], 1e-9, relative=True)
+text = open(scene("stirrups", n=5)).read().replace(
+    "  set Layout = longitudinal", "  set Layout = stirrups\n  set Spacing = 0.1\n  set Cover = 0.01")
+with open(os.path.join(args.work_dir, "stirrups.prm"), "w") as f:
+    f.write(text)
+code, out, err = run_anvil(args.anvil, os.path.join(args.work_dir, "stirrups.prm"), cwd=args.work_dir,
+                           extra_args=["--check"])
+line = next((l for l in out.splitlines() if "stirrups of" in l), "")
+print("   " + line.strip())
+c.check_true("stirrups: 10 ties at 0.1 m", "10 stirrups of 20 mm" in line, line.strip())
+ratio = float(line.split("transverse ratios ")[1].split(" %")[0])
+c.check("stirrups: transverse ratio 2 A_s / (b s) [%]", ratio, 100 * 2 * As / (0.1 * 0.1), 0.01, relative=True)
 
 par = run("composite_5_np2", np=2, n=5)
 c.check_below("np = 2 against np = 1: largest relative difference of rebar_bar.csv",
