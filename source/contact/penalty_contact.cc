@@ -288,7 +288,7 @@ namespace anvil::Contact
         for (unsigned int i = 0; i < dofs.size(); ++i)
           if (!surf.node_segments[i].empty())
             surf.nodes.push_back(i);
-        tangential_force[s].assign(has_friction() ? 3 * dofs.size() : 0, 0.);
+        tangential_force[s].assign(needs_velocities() ? 3 * dofs.size() : 0, 0.);
         surf.node_stiffness.assign(dofs.size(), 0.);
         surf.node_depth.assign(dofs.size(), 0.);
         for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -392,10 +392,10 @@ namespace anvil::Contact
                                      std::vector<double>       &ft,
                                      ContactResult             &result) const
   {
-    std::vector<double> ft_old;
-    if (has_friction())
+    std::vector<double> &ft_old = previous_tangential_force;
+    if (needs_velocities())
       {
-        ft_old = ft;
+        ft_old.assign(ft.begin(), ft.end());
         std::fill(ft.begin(), ft.end(), 0.);
       }
     for (const unsigned int s : slave.nodes)
@@ -413,7 +413,7 @@ namespace anvil::Contact
         const Vec    nn = {normal[0], normal[1], normal[2]};
         const double k  = penalty_factor * slave.node_stiffness[s];
         Vec          vr = {0, 0, 0};
-        if (has_friction() && dt > 0)
+        if (needs_velocities() && dt > 0)
           {
             const dealii::Tensor<1, 3> vb =
               a.velocity + cross_product_3d(a.angular_velocity, xs - a.centre);
@@ -451,12 +451,12 @@ namespace anvil::Contact
                             std::vector<double>       &ft,
                             ContactResult             &result) const
   {
-    const bool friction = has_friction();
+    const bool needs_v = needs_velocities();
     // Friction forces of nodes that leave contact this step are released.
-    std::vector<double> ft_old;
-    if (friction)
+    std::vector<double> &ft_old = previous_tangential_force;
+    if (needs_v)
       {
-        ft_old = ft;
+        ft_old.assign(ft.begin(), ft.end());
         std::fill(ft.begin(), ft.end(), 0.);
       }
     auto pos = [&](const unsigned int i) -> Vec {
@@ -496,7 +496,6 @@ namespace anvil::Contact
         search.tree  = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
         search.built = x;
         drift        = 0;
-        ++result.n_rebuilds;
       }
     const auto &tree = search.tree;
 
@@ -685,7 +684,7 @@ namespace anvil::Contact
         // rigid body's own elements say nothing of the contact stiffness).
         const double k  = penalty_factor * (master.rigid ? slave.node_stiffness[s] : master.stiffness[chosen]);
         Vec          vr = {0, 0, 0};
-        if (friction && dt > 0)
+        if (needs_v && dt > 0)
           {
             vr = {v[3 * s], v[3 * s + 1], v[3 * s + 2]};
             for (unsigned int j = 0; j < 4; ++j)

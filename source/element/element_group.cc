@@ -870,7 +870,6 @@ namespace anvil::Element
               hist[l] = n_hist ? &history[n_hist * el[l]] : nullptr;
             if (n_hist && n_valid < W)
               {
-                scratch_history.assign(hist[n_valid - 1], hist[n_valid - 1] + n_hist);
                 scratch_history.resize(n_hist * (W - n_valid));
                 for (unsigned int l = n_valid; l < W; ++l)
                   {
@@ -977,19 +976,6 @@ namespace anvil::Element
               }
 
         // Stable time step per lane: L_e = min(2 / max_c |grad xi_c|, V / A_max).
-        // The largest face area across lanes (as max_face_area2, faces
-        // outside, lanes inside, so that it vectorises), on refresh cycles.
-        alignas(64) double A2[W] = {};
-        if (refresh_shape)
-        for (const auto &f : faces)
-          for (unsigned int l = 0; l < W; ++l)
-            {
-              const double p0 = xe[f[2]][0][l] - xe[f[0]][0][l], q0 = xe[f[3]][0][l] - xe[f[1]][0][l];
-              const double p1 = xe[f[2]][1][l] - xe[f[0]][1][l], q1 = xe[f[3]][1][l] - xe[f[1]][1][l];
-              const double p2 = xe[f[2]][2][l] - xe[f[0]][2][l], q2 = xe[f[3]][2][l] - xe[f[1]][2][l];
-              const double c0 = p1 * q2 - p2 * q1, c1 = p2 * q0 - p0 * q2, c2 = p0 * q1 - p1 * q0;
-              A2[l]           = std::max(A2[l], 0.25 * (c0 * c0 + c1 * c1 + c2 * c2));
-            }
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
@@ -999,8 +985,12 @@ namespace anvil::Element
                                   Ji[c][2][l] * Ji[c][2][l]);
             const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
             const double V     = 8. * detn[l];
+            // Distortion factor, refreshed every few cycles (shape_factor).
             if (refresh_shape && l < n_valid)
-              shape_factor[el[l]] = std::min(1., V * V / A2[l] * g2 / 4.);
+              shape_factor[el[l]] =
+                std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
+                               return xe[n][a][l];
+                             }) * g2 / 4.);
             dt2[l] = 4. / g2 * shape_factor[el[l]] * rho_c / M;
           }
 

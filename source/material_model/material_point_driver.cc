@@ -110,6 +110,8 @@ namespace anvil::MaterialModel
       throw InputError(file + ": entry 'Loading/Strain increment' must be positive");
     if (path.empty())
       throw InputError(file + ": entry 'Loading/Strain path' is empty");
+    if (mode == "truss" && !material->has_uniaxial_form())
+      throw InputError(file + ": the material model has no uniaxial (truss) form");
     if (mode != "truss" && !material->supports(formulation))
       throw InputError(file + ": the material model does not support the " +
                        to_string(formulation) + " formulation");

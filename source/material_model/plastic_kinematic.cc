@@ -182,11 +182,7 @@ namespace anvil::MaterialModel
                              const PlasticKinematicLaw &l,
                              const bool                 erode)
   {
-    rho     = density;
-    E       = youngs_modulus;
-    nu      = poissons_ratio;
-    lambda  = E * nu / ((1. + nu) * (1. - 2. * nu));
-    mu      = E / (2. * (1. + nu));
+    Elastic::set(density, youngs_modulus, poissons_ratio);
     law     = l;
     erosion = erode && l.failure_strain > 0;
   }
@@ -400,6 +396,7 @@ namespace anvil::MaterialModel
                                                   const double stress,
                                                   double      *h) const
   {
+    const double E       = youngs_modulus();
     const double s_trial = stress + E * d_eps;
     const double R       = law.rate_effects && dt > 0 ? law.rate_factor(std::abs(d_eps) / dt) : 1.;
     const double xi      = s_trial - h[0];

@@ -146,20 +146,11 @@ namespace anvil::Rebar
       if (!(upper[d] > lower[d]))
         throw InputError(at + "'Member upper corner' must exceed 'Member lower corner'");
     prm.enter_subsection("Material");
-    material = MaterialModel::create(prm);
+    material                = MaterialModel::create(prm);
+    const std::string model = prm.get("Model");
     prm.leave_subsection();
-    try
-      {
-        std::vector<double> h(material->n_uniaxial_history() + 1, 0.);
-        material->update_uniaxial_stress(0., 0., 0., h.data());
-      }
-    catch (const InputError &)
-      {
-        throw InputError(at + "material model '" + prm.get("Material") +
-                         "' has no uniaxial (truss) form");
-      }
-    catch (...)
-      {}
+    if (!material->has_uniaxial_form() || material->is_rigid())
+      throw InputError(at + "material model '" + model + "' has no uniaxial (truss) form");
     if (polylines().empty())
       throw InputError(at + "the layout has no bar (check the cover and the member size)");
   }
@@ -233,7 +224,7 @@ namespace anvil::Rebar
 
   std::string Layout::ratio_summary() const
   {
-    const unsigned int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
+    const unsigned int b = (axis + 1) % 3, c = (axis + 2) % 3;
     const double       wb = upper[b] - lower[b], wc = upper[c] - lower[c];
     std::ostringstream s;
     s << std::setprecision(3);
@@ -246,7 +237,6 @@ namespace anvil::Rebar
         << 100. * 2 * area() / (wc * spacing) << " %";
     else
       s << polylines().size() << " polylines of " << 1000 * diameter << " mm";
-    (void)a;
     return s.str();
   }
 } // namespace anvil::Rebar

@@ -209,10 +209,11 @@ namespace anvil
 
     const double *x = position.begin();
     for (const auto &group : element_groups)
+      {
+      const auto names = group.get_material().history_names();
       for (unsigned int e = 0; e < group.n_elements(); ++e)
         if (group.element_is_owned(e))
         {
-          const auto names = group.get_material().history_names();
           for (unsigned int k = 0; k < names.size(); ++k)
             if (history_fields.count(names[k]))
               {
@@ -235,6 +236,7 @@ namespace anvil
           hourglass_density[c] = group.element_hourglass_energy(e) / V0;
           internal_density[c]  = group.element_internal_energy(e) / V0;
         }
+      }
 
     const QMidpoint<3>                 centre;
     FEValues<3>                        fe_values(fe, centre, update_gradients);

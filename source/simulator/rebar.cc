@@ -110,8 +110,27 @@ namespace anvil
                   }
               }
           }
+        T.tributary.assign(T.X.size(), 0.);
         for (const auto &e : T.elements)
-          T.reference_length.push_back(T.X[e[0]].distance(T.X[e[1]]));
+          {
+            T.reference_length.push_back(T.X[e[0]].distance(T.X[e[1]]));
+            T.tributary[e[0]] += 0.5 * T.reference_length.back();
+            T.tributary[e[1]] += 0.5 * T.reference_length.back();
+          }
+        if (layout.has_probe)
+          {
+            double best = 1e300;
+            for (unsigned int k = 0; k < T.elements.size(); ++k)
+              {
+                const double dist =
+                  layout.probe.distance(0.5 * (T.X[T.elements[k][0]] + T.X[T.elements[k][1]]));
+                if (dist < best - 1e-12)
+                  {
+                    best            = dist;
+                    T.probe_element = k;
+                  }
+              }
+          }
         T.length    = T.reference_length;
         T.stress    = std::vector<double>(T.elements.size(), 0.);
         T.force     = T.stress;
@@ -220,15 +239,15 @@ namespace anvil
                   T.xs[3 * i + d] = T.X[i][d];
                   T.vs[3 * i + d] = bodies[host].initial_velocity[d];
                 }
-            for (unsigned int k = 0; k < T.elements.size(); ++k)
-              for (const unsigned int i : T.elements[k])
-                T.ms[i] += 0.5 * layout.material->density() * layout.area() * T.reference_length[k];
+            for (unsigned int i = 0; i < n; ++i)
+              T.ms[i] = layout.material->density() * layout.area() * T.tributary[i];
             // The last node of every bar, for a pull-out.
+            T.pulled.assign(n, false);
             if (layout.pulled)
               for (unsigned int k = 0; k < T.elements.size(); ++k)
                 if (k + 1 == T.elements.size() || T.elements[k + 1][0] != T.elements[k][1])
                   {
-                    T.pulled_nodes.push_back(T.elements[k][1]);
+                    T.pulled[T.elements[k][1]] = true;
                     for (unsigned int d = 0; d < 3; ++d)
                       T.vs[3 * T.elements[k][1] + d] = layout.pull_velocity[d];
                   }
@@ -251,10 +270,6 @@ namespace anvil
         const auto         &T   = rebars[r];
         const double        rho = rebar_layouts[r].material->density();
         const double        A   = rebar_layouts[r].area();
-        std::vector<double> m(T.X.size(), 0.);
-        for (unsigned int k = 0; k < T.elements.size(); ++k)
-          for (const unsigned int i : T.elements[k])
-            m[i] += 0.5 * rho * A * T.reference_length[k];
         for (unsigned int i = 0; i < T.X.size(); ++i)
           if (T.host_dofs[i][0] >= 0)
             {
@@ -262,7 +277,7 @@ namespace anvil
               for (unsigned int I = 0; I < 8; ++I)
                 if (T.host_dofs[i][I] < long(mass.locally_owned_size()))
                   for (unsigned int d = 0; d < 3; ++d)
-                    mass.local_element(T.host_dofs[i][I] + d) += N[I] * m[i];
+                    mass.local_element(T.host_dofs[i][I] + d) += N[I] * rho * A * T.tributary[i];
             }
       }
   }
@@ -287,7 +302,12 @@ namespace anvil
         const double          A        = rebar_layouts[r].area();
         const double          c        = std::sqrt(material.youngs_modulus() / material.density());
         const unsigned int    n        = T.X.size();
-        std::vector<double>   xr(3 * n, 0.), fr(3 * n, 0.);
+        // The node positions go to T.x (the output's too): no allocation
+        // per step.
+        auto &xr = T.x;
+        auto &fr = T.nodal_force;
+        xr.assign(3 * n, 0.);
+        fr.assign(3 * n, 0.);
         for (unsigned int i = 0; i < n; ++i)
           if (T.host_owned[i])
             {
@@ -304,7 +324,6 @@ namespace anvil
             T.xh = xr;
             xr   = T.xs;
           }
-        T.x        = xr;
         double work = 0;
         for (unsigned int k = 0; k < T.elements.size(); ++k)
           {
@@ -344,8 +363,9 @@ namespace anvil
             // work of the bond forces is the 'bond' energy.
             const auto  &L       = rebar_layouts[r];
             const double tau_max = L.bond_modulus * L.slip_at_peak;
-            std::vector<double> trib(n, 0.);
-            std::vector<Tensor<1, 3>> tangent(n);
+            const auto &trib    = T.tributary;
+            auto       &tangent = T.tangent;
+            tangent.assign(n, Tensor<1, 3>());
             for (unsigned int k = 0; k < T.elements.size(); ++k)
               {
                 const unsigned int a = T.elements[k][0], b = T.elements[k][1];
@@ -355,8 +375,6 @@ namespace anvil
                 dd /= dd.norm();
                 tangent[a] += dd;
                 tangent[b] += dd;
-                trib[a] += 0.5 * T.reference_length[k];
-                trib[b] += 0.5 * T.reference_length[k];
               }
             const double perimeter = 3.14159265358979323846 * L.diameter;
             double       bond_work = 0;
@@ -513,17 +531,14 @@ namespace anvil
     for (unsigned int r = 0; r < rebars.size(); ++r)
       if (rebar_layouts[r].bond_slip)
         {
-          auto             &T = rebars[r];
-          std::vector<bool> pulled(T.X.size(), false);
-          for (const unsigned int i : T.pulled_nodes)
-            pulled[i] = true;
+          auto &T = rebars[r];
           for (unsigned int i = 0; i < T.X.size(); ++i)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 const unsigned int j     = 3 * i + d;
                 const double       v_old = T.vs[j];
                 const double       f     = T.fs[j] + T.ms[i] * gravity[d];
-                if (pulled[i])
+                if (T.pulled[i])
                   {
                     const double vp = rebar_layouts[r].pull_velocity[d];
                     if (dt_avg > 0)
@@ -580,20 +595,7 @@ namespace anvil
             if (it != names.end())
               ep = std::max(ep, T.history[T.n_history * k + (it - names.begin())]);
           }
-        // The probed element: nearest midpoint (reference) to the point.
-        unsigned int probe = 0;
-        double       best  = 1e300;
-        if (rebar_layouts[r].has_probe)
-          for (unsigned int k = 0; k < T.elements.size(); ++k)
-            {
-              const double dist =
-                rebar_layouts[r].probe.distance(0.5 * (T.X[T.elements[k][0]] + T.X[T.elements[k][1]]));
-              if (dist < best - 1e-12)
-                {
-                  best  = dist;
-                  probe = k;
-                }
-            }
+        const unsigned int probe = T.probe_element;
         rebar_files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
                        << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe];
         // Bond-slip: slip and bond stress at the probed element's first node.

@@ -471,19 +471,19 @@ namespace anvil
             dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
               long(position.get_partitioner()->global_to_local(dofs[i])) :
               -1;
-          {
-            std::vector<double> m(dofs.size(), 0.);
-            for (unsigned int i = 0; i < dofs.size(); ++i)
-              if (contact_local_index[p][i] >= 0)
-                m[i] = mass.local_element(contact_local_index[p][i]);
-            Utilities::MPI::sum(m, mpi_communicator, m);
-            contact_pairs[p].set_node_masses(m);
-            place_analytic_shapes(p);
-            contact_frequency_squared =
-                std::max(contact_frequency_squared, contact_pairs[p].max_spring_frequency_squared());
-          }
+        // The pair's node masses (normal damping, the springs' frequency in
+        // the stable step).
+        std::vector<double> m(dofs.size(), 0.);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          if (contact_local_index[p][i] >= 0)
+            m[i] = mass.local_element(contact_local_index[p][i]);
+        Utilities::MPI::sum(m, mpi_communicator, m);
+        contact_pairs[p].set_node_masses(m);
+        place_analytic_shapes(p);
+        contact_frequency_squared =
+          std::max(contact_frequency_squared, contact_pairs[p].max_spring_frequency_squared());
         contact_positions[p].resize(3 * dofs.size());
-        if (contact_pairs[p].has_friction())
+        if (contact_pairs[p].needs_velocities())
           contact_velocities[p].resize(3 * dofs.size());
         contact_forces[p].resize(3 * dofs.size());
       }

@@ -137,8 +137,7 @@ namespace anvil
                        c[2],
                        eps_p,
                        group.element_internal_energy(e) + group.element_hourglass_energy(e),
-                       0.});
-          info.back() = group.element_reference_volume(e);
+                       group.element_reference_volume(e)});
         }
   }
 

@@ -88,8 +88,6 @@ namespace anvil::Contact
     dealii::Tensor<1, 3> shape_force, shape_torque;
     /** Number of active slave nodes (both passes). */
     unsigned int n_active = 0;
-    /** Number of search-tree rebuilds this step (both passes). */
-    unsigned int n_rebuilds = 0;
   };
 
   /**
@@ -134,13 +132,9 @@ namespace anvil::Contact
                                  std::vector<double>       &f);
 
     /** Whether the pair needs velocities (friction or damping). */
-    bool has_friction() const
+    bool needs_velocities() const
     {
       return static_friction > 0 || dynamic_friction > 0 || normal_damping > 0;
-    }
-    bool has_damping() const
-    {
-      return normal_damping > 0;
     }
 
     /** Mark surface @p s (0: first body) as a rigid body's. */
@@ -208,6 +202,9 @@ namespace anvil::Contact
         zero for nodes not in contact. */
     std::vector<double> tangential_force[2];
     std::vector<double> node_mass;
+    /** Work arrays of a pass (kept, so that a step allocates nothing):
+        the tangential forces of the previous step, and slave normals. */
+    mutable std::vector<double> previous_tangential_force;
     AnalyticSurface     analytic[2];
     std::shared_ptr<SearchTree> search[2];
 

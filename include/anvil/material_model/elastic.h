@@ -47,6 +47,11 @@ namespace anvil::MaterialModel
       return true;
     }
 
+    bool has_uniaxial_form() const override
+    {
+      return true;
+    }
+
     double update_uniaxial_stress(double  strain_increment,
                                   double  dt,
                                   double  stress,

@@ -78,6 +78,12 @@ namespace anvil
         return {};
       }
 
+      /** Whether the model has a uniaxial (truss) form. */
+      virtual bool has_uniaxial_form() const
+      {
+        return false;
+      }
+
       /** Number of history variables of the uniaxial form. */
       virtual unsigned int n_uniaxial_history() const
       {

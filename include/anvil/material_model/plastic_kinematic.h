@@ -6,7 +6,7 @@
  */
 #pragma once
 
-#include <anvil/material_model/interface.h>
+#include <anvil/material_model/elastic.h>
 
 namespace anvil::MaterialModel
 {
@@ -93,8 +93,12 @@ namespace anvil::MaterialModel
    * plastic work density, effective strain rate; total Lagrangian adds the
    * previous F - I (9) and the back stress is kept in the rotated frame
    * like the stress.
+   *
+   * The elastic constants and what derives from them (density, bulk, wave
+   * and Young's modulus) are the Elastic model's; every stress update is
+   * overridden here.
    */
-  class PlasticKinematic : public Interface
+  class PlasticKinematic : public Elastic
   {
   public:
     static void declare_parameters(dealii::ParameterHandler &prm);
@@ -104,26 +108,6 @@ namespace anvil::MaterialModel
     void set(double density, double youngs_modulus, double poissons_ratio,
              const PlasticKinematicLaw &law, bool erosion);
 
-    double density() const override
-    {
-      return rho;
-    }
-    double bulk_modulus() const override
-    {
-      return lambda + 2. / 3. * mu;
-    }
-    double wave_modulus() const override
-    {
-      return lambda + 2. * mu;
-    }
-    double youngs_modulus() const override
-    {
-      return E;
-    }
-    bool supports(const Formulation) const override
-    {
-      return true;
-    }
     unsigned int n_history(const Formulation f) const override
     {
       return f == Formulation::total_lagrangian ? 18 : 9;
@@ -193,7 +177,6 @@ namespace anvil::MaterialModel
     }
 
   private:
-    double              rho = 0, E = 0, nu = 0, lambda = 0, mu = 0;
     PlasticKinematicLaw law;
     bool                erosion = false;
   };

@@ -97,6 +97,10 @@ namespace anvil::Rebar
     std::vector<dealii::Point<3>>            X;
     std::vector<std::array<unsigned int, 2>> elements;
     std::vector<double>                      reference_length, length;
+    /** Half the reference length of the elements at each node. */
+    std::vector<double> tributary;
+    /** The element rebar_NAME.csv reports (nearest to 'Probe point'). */
+    unsigned int probe_element = 0;
     /** Axial Cauchy stress, axial force, internal energy per element. */
     std::vector<double> stress, force, energy;
     std::vector<double> history;
@@ -109,7 +113,11 @@ namespace anvil::Rebar
         range, bond stress, slip, bond force; the pulled nodes. */
     std::vector<double>       xs, vs, fs, ms, xh;
     std::vector<double>       plastic_slip, damage, bond_stress, slip, bond_force;
-    std::vector<unsigned int> pulled_nodes;
+    std::vector<bool> pulled;
+    /** Work arrays of the step (no allocation per step): nodal forces and
+        bar tangents. */
+    std::vector<double>               nodal_force;
+    std::vector<dealii::Tensor<1, 3>> tangent;
     /** Relative displacement bar - host at the last evaluation (3 per node). */
     std::vector<double> x_bond_old;
     /** Output records (time, file) of rebar_NAME.pvd. */
