@@ -204,8 +204,10 @@ namespace anvil::Element
                                  const double (&X)[8][3],
                                  const unsigned int  cell,
                                  const bool          owned,
-                                 const unsigned long id)
+                                 const unsigned long id,
+                                 const double        strength_factor)
   {
+    strength_factors.push_back(strength_factor);
     nodes.insert(nodes.end(), node.begin(), node.end());
     cell_index.push_back(cell);
     global_id.push_back(id == static_cast<unsigned long>(-1) ? cell : id);
@@ -250,6 +252,16 @@ namespace anvil::Element
     const std::size_t n = cell_index.size();
     stresses.assign(6 * n * n_qp, 0.);
     history.assign(n_hist * n * n_qp, 0.);
+    if (n_hist > 0)
+      for (std::size_t e = 0; e < n; ++e)
+        {
+          MaterialModel::PointData data;
+          data.characteristic_length = std::cbrt(reference_volume[e]);
+          data.strength_factor       = strength_factors[e];
+          for (unsigned int q = 0; q < n_qp; ++q)
+            material.initialize_history(&history[n_hist * (e * n_qp + q)], data);
+        }
+    strength_factors = std::vector<double>();
     if (hourglass == HourglassType::stiffness)
       hourglass_modes.assign(12 * n, 0.);
     if (hourglass != HourglassType::none)

@@ -9,6 +9,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -38,11 +39,24 @@ namespace anvil::MaterialModel
     prm.enter_subsection("Loading");
     prm.declare_entry("Mode",
                       "uniaxial stress",
-                      Patterns::Selection("uniaxial stress|uniaxial strain|simple shear|truss"),
+                      Patterns::Selection("uniaxial stress|biaxial stress|uniaxial strain|simple shear|truss"),
                       "Deformation of the point: 'uniaxial stress' (lateral "
-                      "stresses held at zero), 'uniaxial strain' (lateral "
-                      "strains zero), 'simple shear' (velocity gradient L_xy), "
-                      "'truss' (the model's one-dimensional form).");
+                      "stresses held at 'Lateral stress'), 'biaxial stress' "
+                      "(equal strains in x and y, sigma_zz held at zero), "
+                      "'uniaxial strain' (lateral strains zero), 'simple shear' "
+                      "(velocity gradient L_xy), 'truss' (the model's "
+                      "one-dimensional form).");
+    prm.declare_entry("Lateral stress",
+                      "0",
+                      Patterns::Double(),
+                      "Uniaxial stress mode: the lateral Cauchy stresses "
+                      "sigma_yy = sigma_zz, reached in the first step and held "
+                      "(negative: a confining pressure, a triaxial test). Units: Pa.");
+    prm.declare_entry("Characteristic length",
+                      "0.1",
+                      Patterns::Double(0.),
+                      "Element size the point stands for (crack-band "
+                      "regularisation of softening materials). Units: m.");
     prm.declare_entry("Formulation",
                       "updated Lagrangian",
                       Patterns::Selection("updated Lagrangian|total Lagrangian"),
@@ -94,6 +108,8 @@ namespace anvil::MaterialModel
                         Formulation::total_lagrangian :
                         Formulation::updated_lagrangian;
         strain_rate = prm.get_double("Strain rate");
+        lateral_stress        = prm.get_double("Lateral stress");
+        characteristic_length = prm.get_double("Characteristic length");
         increment   = prm.get_double("Strain increment");
         for (const auto &v : dealii::Utilities::split_string_list(prm.get("Strain path")))
           path.push_back(dealii::Utilities::string_to_double(v));
@@ -106,6 +122,8 @@ namespace anvil::MaterialModel
     if (!(strain_rate > 0))
       throw InputError(file + ": entry 'Loading/Strain rate' must be positive (a "
                               "rate-free run switches the model's rate effects off)");
+    if (!(characteristic_length > 0))
+      throw InputError(file + ": entry 'Loading/Characteristic length' must be positive");
     if (!(increment > 0))
       throw InputError(file + ": entry 'Loading/Strain increment' must be positive");
     if (path.empty())
@@ -193,11 +211,18 @@ namespace anvil::MaterialModel
       out << "time,strain_xx,strain_yy,strain_zz,strain_xy,strain_yz,strain_xz,"
              "stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz";
     for (const auto &n : names)
-      out << ',' << n;
+      if (!n.empty())
+        out << ',' << n;
     out << '\n';
 
     State state;
     state.history.assign(truss ? material->n_uniaxial_history() : material->n_history(formulation), 0.);
+    if (!truss)
+      {
+        PointData data;
+        data.characteristic_length = characteristic_length;
+        material->initialize_history(state.history.data(), data);
+      }
     double time = 0, control = 0, strain[6] = {0, 0, 0, 0, 0, 0};
     double lateral = -0.3; // ratio of lateral to axial increment, refined by Newton
     auto   write = [&]() {
@@ -214,7 +239,8 @@ namespace anvil::MaterialModel
             out << ',' << s;
         }
       for (unsigned int k = 0; k < names.size(); ++k)
-        out << ',' << state.history[k];
+        if (!names[k].empty())
+          out << ',' << state.history[k];
       out << '\n';
     };
     write();
@@ -255,19 +281,22 @@ namespace anvil::MaterialModel
               {
                 // Uniaxial stress: secant iterations on the lateral
                 // increment a (the same in y and z for these isotropic
-                // models) until the lateral Cauchy stress vanishes.
+                // models) until the lateral Cauchy stress reaches its
+                // target. Biaxial stress: equal strains in x and y, a in z.
+                const bool biaxial = (mode == "biaxial stress");
                 auto residual = [&](const double a, State &trial) {
-                  trial              = state;
-                  const double A[9] = {de, 0, 0, 0, a * de, 0, 0, 0, a * de};
+                  trial = state;
+                  const double A[9] = {de, 0, 0, 0, biaxial ? de : a * de, 0, 0, 0, a * de};
                   step(A, dt, trial);
                   double sigma[6];
                   cauchy(trial, sigma);
-                  return 0.5 * (sigma[1] + sigma[2]);
+                  return biaxial ? sigma[2] : 0.5 * (sigma[1] + sigma[2]) - lateral_stress;
                 };
                 State        trial;
                 double       a0 = lateral, a1 = lateral * (1. + 1e-4) + 1e-6;
                 double       r0 = residual(a0, trial), r1 = residual(a1, trial);
-                const double scale = std::max(1., material->youngs_modulus() * std::abs(de));
+                const double scale = std::max({1., material->youngs_modulus() * std::abs(de),
+                                               std::abs(lateral_stress)});
                 for (unsigned int it = 0; it < 50 && std::abs(r1) > 1e-12 * scale; ++it)
                   {
                     if (r1 == r0)
@@ -281,7 +310,7 @@ namespace anvil::MaterialModel
                 lateral = a1;
                 state   = trial;
                 strain[0] += de;
-                strain[1] += a1 * de;
+                strain[1] += (biaxial ? 1. : a1) * de;
                 strain[2] += a1 * de;
               }
             time += dt;

@@ -344,46 +344,7 @@ namespace anvil::MaterialModel
                                             double      *S,
                                             double      *h) const
   {
-    using Kinematics::congruence;
-    using Kinematics::determinant;
-    using Kinematics::invert;
-    double *Fold_minus_I = h + 9;
-    double  Fold[9];
-    for (unsigned int k = 0; k < 9; ++k)
-      Fold[k] = Fold_minus_I[k] + (k % 4 == 0 ? 1. : 0.);
-    if (dt > 0)
-      {
-        // Cauchy stress of the previous step, sigma = F S F^T / J.
-        double sigma[6];
-        congruence(Fold, S, determinant(Fold), sigma);
-        // L dt = (F - F_old) F_mid^-1 (the mid-step velocity gradient).
-        double Fmid[9], Fmi[9], dF[9], Ldt[9];
-        for (unsigned int k = 0; k < 9; ++k)
-          {
-            Fmid[k] = 0.5 * (F[k] + Fold[k]);
-            dF[k]   = F[k] - Fold[k];
-          }
-        invert(Fmid, Fmi);
-        Kinematics::multiply(dF, Fmi, Ldt);
-        const double w01 = 0.5 * (Ldt[1] - Ldt[3]);
-        const double w12 = 0.5 * (Ldt[5] - Ldt[7]);
-        const double w02 = 0.5 * (Ldt[2] - Ldt[6]);
-        Kinematics::rotate_stress(w01, w12, w02, 1., sigma);
-        Kinematics::rotate_stress(w01, w12, w02, 1., h);
-        const double D[6] = {Ldt[0] / dt,
-                             Ldt[4] / dt,
-                             Ldt[8] / dt,
-                             0.5 * (Ldt[1] + Ldt[3]) / dt,
-                             0.5 * (Ldt[5] + Ldt[7]) / dt,
-                             0.5 * (Ldt[2] + Ldt[6]) / dt};
-        update_cauchy_stress(D, dt, sigma, h);
-        // S = J F^-1 sigma F^-T.
-        double Fi[9];
-        invert(F, Fi);
-        congruence(Fi, sigma, 1. / determinant(F), S);
-      }
-    for (unsigned int k = 0; k < 9; ++k)
-      Fold_minus_I[k] = F[k] - (k % 4 == 0 ? 1. : 0.);
+    update_pk2_by_rate_form(F, dt, S, h, 9);
   }
 
 

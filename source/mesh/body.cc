@@ -136,7 +136,37 @@ namespace anvil
                       Patterns::List(Patterns::Double(), 3, 3),
                       "Initial velocity of every node of the body (of the "
                       "centre of mass of a rigid body). Units: m/s.");
+    prm.enter_subsection("Imperfection");
+    prm.declare_entry("Lower corner",
+                      "",
+                      Patterns::Anything(),
+                      "Lower corner of a box (reference coordinates) whose "
+                      "elements (by their centroid) get weaker material, to "
+                      "place where a crack or crushing band forms. Empty: no "
+                      "imperfection. Only models with strengths (concrete "
+                      "damaged plasticity) accept one. Units: m.");
+    prm.declare_entry("Upper corner",
+                      "",
+                      Patterns::Anything(),
+                      "Upper corner of the imperfection box. Units: m.");
+    prm.declare_entry("Strength factor",
+                      "0.95",
+                      Patterns::Double(0.),
+                      "Factor on the tensile and compressive strength curves "
+                      "inside the box, 0 < factor <= 1. Units: none.");
+    prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
+  }
+
+
+  double Body::strength_factor(const dealii::Point<3> &centroid) const
+  {
+    if (!has_imperfection)
+      return 1.;
+    for (unsigned int d = 0; d < 3; ++d)
+      if (centroid[d] < imperfection_lower[d] || centroid[d] > imperfection_upper[d])
+        return 1.;
+    return imperfection_factor;
   }
 
 
@@ -191,7 +221,8 @@ namespace anvil
       }
 
     prm.enter_subsection("Material");
-    material = MaterialModel::create(prm);
+    material                     = MaterialModel::create(prm);
+    const std::string model_name = prm.get("Model");
     prm.leave_subsection();
 
     formulation = prm.get("Formulation") == "total Lagrangian" ?
@@ -199,7 +230,7 @@ namespace anvil
                     Formulation::updated_lagrangian;
     if (!material->supports(formulation))
       throw InputError("subsection 'Body " + name + "': material model '" +
-                       prm.get("Material") + "' does not support the " +
+                       model_name + "' does not support the " +
                        to_string(formulation) + " formulation");
     integration = prm.get("Integration") == "full" ?
                     Element::Integration::full :
@@ -215,6 +246,35 @@ namespace anvil
     prm.leave_subsection();
     initial_velocity =
       parse_vector(prm.get("Initial velocity"), "Initial velocity");
+    prm.enter_subsection("Imperfection");
+    {
+      const std::string lo = dealii::Utilities::trim(prm.get("Lower corner"));
+      const std::string hi = dealii::Utilities::trim(prm.get("Upper corner"));
+      has_imperfection     = !lo.empty() || !hi.empty();
+      if (has_imperfection)
+        {
+          const std::string where = "subsection 'Body " + name + "/Imperfection': ";
+          if (lo.empty() || hi.empty())
+            throw InputError(where + "give both 'Lower corner' and 'Upper corner', or neither");
+          try
+            {
+              imperfection_lower = dealii::Point<3>(parse_vector(lo, "Lower corner"));
+              imperfection_upper = dealii::Point<3>(parse_vector(hi, "Upper corner"));
+            }
+          catch (const InputError &e)
+            {
+              throw InputError(where + e.what());
+            }
+          imperfection_factor = prm.get_double("Strength factor");
+          if (!(imperfection_factor > 0) || imperfection_factor > 1)
+            throw InputError(where + "'Strength factor' must satisfy 0 < factor <= 1");
+          if (!material->accepts_strength_factor())
+            throw InputError(where + "the material model '" + model_name +
+                             "' has no strengths to weaken (allowed with: "
+                             "concrete damaged plasticity)");
+        }
+    }
+    prm.leave_subsection();
     rigid.parse_parameters(prm, name);
     if (!material->is_rigid() && rigid.shape.type != RigidBody::Shape::Type::mesh)
       throw InputError("subsection 'Body " + name + "/Rigid body': a 'Contact shape' "

@@ -203,7 +203,7 @@ namespace anvil
     std::map<std::string, Vector<float>> history_fields;
     for (const auto &group : element_groups)
       for (const auto &name : group.get_material().history_names())
-        if (name.rfind("back_stress", 0) != 0)
+        if (!name.empty() && name.rfind("back_stress", 0) != 0)
           history_fields.emplace(name, Vector<float>(n_cells));
     Vector<float> eroded(n_cells);
 
@@ -319,15 +319,22 @@ namespace anvil
   {
     const unsigned int  nb = bodies.size();
     std::vector<double> count(3 * nb, 0.), peak(2 * nb, 0.), lo(3 * nb, 1e300), hi(3 * nb, -1e300);
+    std::vector<double> dissipated(nb, 0.);
     for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
         const auto &group = element_groups[g];
         const auto  names = group.get_material().history_names();
         const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
+        const int   id    = group.get_material().dissipation_index();
         for (unsigned int e = 0; e < group.n_elements(); ++e)
           if (group.element_is_owned(e))
             {
               const bool eroded = group.element_is_eroded(e);
+              if (id >= 0)
+                for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
+                  dissipated[g] += group.history_variables(e, q)[id] *
+                                   group.element_reference_volume(e) /
+                                   group.n_quadrature_points();
               count[3 * g] += 1;
               count[3 * g + 1] += eroded;
               if (it == names.end())
@@ -348,6 +355,7 @@ namespace anvil
         hi[3 * b + d]        = std::max(hi[3 * b + d], position.local_element(i));
       }
     Utilities::MPI::sum(count, mpi_communicator, count);
+    Utilities::MPI::sum(dissipated, mpi_communicator, dissipated);
     Utilities::MPI::max(peak, mpi_communicator, peak);
     Utilities::MPI::min(lo, mpi_communicator, lo);
     Utilities::MPI::max(hi, mpi_communicator, hi);
@@ -355,13 +363,14 @@ namespace anvil
       return;
     std::ofstream out(output_directory + "/bodies.csv");
     out << "body,elements,eroded,peak_effective_plastic_strain_intact,"
-           "peak_effective_plastic_strain,xmin,ymin,zmin,xmax,ymax,zmax\n"
+           "peak_effective_plastic_strain,xmin,ymin,zmin,xmax,ymax,zmax,"
+           "dissipated_energy\n"
         << std::setprecision(12);
     for (unsigned int b = 0; b < nb; ++b)
       out << bodies[b].name << ',' << count[3 * b] << ',' << count[3 * b + 1] << ','
           << peak[2 * b] << ',' << peak[2 * b + 1] << ',' << lo[3 * b] << ',' << lo[3 * b + 1]
           << ',' << lo[3 * b + 2] << ',' << hi[3 * b] << ',' << hi[3 * b + 1] << ','
-          << hi[3 * b + 2] << '\n';
+          << hi[3 * b + 2] << ',' << dissipated[b] << '\n';
   }
 
 

@@ -179,11 +179,13 @@ namespace anvil
               for (unsigned int c = 0; c < 3; ++c)
                 X[v][c] = cell->vertex(v)[c];
             }
-          element_groups[cell->material_id()].add_element(node,
-                                                          X,
-                                                          cell->active_cell_index(),
-                                                          cell->is_locally_owned(),
-                                                          cell->id().get_coarse_cell_id());
+          element_groups[cell->material_id()].add_element(
+            node,
+            X,
+            cell->active_cell_index(),
+            cell->is_locally_owned(),
+            cell->id().get_coarse_cell_id(),
+            bodies[cell->material_id()].strength_factor(cell->center()));
         }
     for (auto &g : element_groups)
       g.finalize();

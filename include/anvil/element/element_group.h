@@ -101,15 +101,19 @@ namespace anvil::Element
      * index) used by output. A ghost element (@p owned false) computes its
      * forces like any other, so that every owned node receives the
      * contributions of all its elements in the same order on any number of
-     * processes, but adds nothing to the energies.
+     * processes, but adds nothing to the energies. @p strength_factor
+     * scales the strengths of materials that accept one (an imperfection).
      */
     void add_element(const std::array<unsigned int, 8> &node,
                      const double (&X)[8][3],
                      unsigned int  cell_index,
-                     bool          owned     = true,
-                     unsigned long global_id = static_cast<unsigned long>(-1));
+                     bool          owned           = true,
+                     unsigned long global_id       = static_cast<unsigned long>(-1),
+                     double        strength_factor = 1.);
 
-    /** Allocate stress and history storage once all elements are added. */
+    /** Allocate stress and history storage once all elements are added,
+        and let the material set up each point's history (characteristic
+        length cbrt(V_0) of the element, strength factor). */
     void finalize();
 
     /**
@@ -265,6 +269,9 @@ namespace anvil::Element
     static constexpr unsigned int shape_refresh_interval = 8;
     unsigned int                  n_calls                = 0;
     bool                          refresh_shape          = true;
+    /** Strength factor per element, until finalize() hands it to the
+        material. */
+    std::vector<double> strength_factors;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
   };

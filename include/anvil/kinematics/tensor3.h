@@ -7,8 +7,37 @@
  */
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 namespace anvil::Kinematics
 {
+  /**
+   * Eigenvalues of the symmetric tensor @p A (Voigt), in descending order,
+   * by the closed form of Smith (1961): A = m I + p B with
+   * det(B) / 2 = cos(3 phi).
+   */
+  inline void principal_values(const double *A, double (&value)[3])
+  {
+    const double off = A[3] * A[3] + A[4] * A[4] + A[5] * A[5];
+    const double m   = (A[0] + A[1] + A[2]) / 3.;
+    const double a = A[0] - m, b = A[1] - m, c = A[2] - m;
+    const double p2  = a * a + b * b + c * c + 2. * off;
+    if (!(p2 > 1e-30 * (m * m + 1e-300)))
+      {
+        value[0] = value[1] = value[2] = m;
+        return;
+      }
+    const double p = std::sqrt(p2 / 6.);
+    const double r = (a * (b * c - A[4] * A[4]) - A[3] * (A[3] * c - A[4] * A[5]) +
+                      A[5] * (A[3] * A[4] - b * A[5])) /
+                     (2. * p * p * p);
+    const double phi = std::acos(std::clamp(r, -1., 1.)) / 3.;
+    value[0]         = m + 2. * p * std::cos(phi);
+    value[2]         = m + 2. * p * std::cos(phi + 2.0943951023931957);
+    value[1]         = 3. * m - value[0] - value[2];
+  }
+
   inline double determinant(const double *A)
   {
     return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +

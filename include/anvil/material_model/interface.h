@@ -35,6 +35,19 @@ namespace anvil
   namespace MaterialModel
   {
     /**
+     * What the mesh tells a material point when its history is set up.
+     */
+    struct PointData
+    {
+      /** Characteristic length of the point's element (cube root of its
+          reference volume), for crack-band regularisation. Units: m. */
+      double characteristic_length = 1.;
+      /** Factor on the strengths of the point (an imperfection), 1 where
+          the scene asks for none. Units: none. */
+      double strength_factor = 1.;
+    };
+
+    /**
      * Base class of all material models. A model registers itself with
      * ANVIL_REGISTER_MATERIAL_MODEL at the bottom of its .cc file; the
      * selection in the parameter file is built from the registry.
@@ -71,11 +84,35 @@ namespace anvil
         return 0;
       }
 
-      /** Names of the history variables that output shows (the first
-          n_output_history() of them), e.g. "effective_plastic_strain". */
+      /**
+       * Set up the history of one point (after it is zeroed) from what the
+       * mesh knows of it. The default leaves the zeros.
+       */
+      virtual void initialize_history(double *history, const PointData &data) const
+      {
+        (void)history, (void)data;
+      }
+
+      /** Whether the model scales its strengths by
+          PointData::strength_factor (an imperfection region of a body). */
+      virtual bool accepts_strength_factor() const
+      {
+        return false;
+      }
+
+      /** Names of the history variables that output shows, e.g.
+          "effective_plastic_strain": entry k names history variable k; an
+          empty name is not shown (a variable the scene did not ask for). */
       virtual std::vector<std::string> history_names() const
       {
         return {};
+      }
+
+      /** Index of the history variable holding the energy dissipated per
+          unit volume (plastic work, damage), or -1. Units: J/m^3. */
+      virtual int dissipation_index() const
+      {
+        return -1;
       }
 
       /** Whether the model has a uniaxial (truss) form. */
@@ -201,6 +238,22 @@ namespace anvil
                                             const double dt,
                                             const double stress,
                                             double      *history) const;
+
+    protected:
+      /**
+       * Total Lagrangian evaluation of a rate-form (hypoelastic-plastic)
+       * model, for update_pk2_stress() overrides: the Cauchy stress is
+       * recovered from @p S and the previous F (kept in @p history at
+       * @p F_offset as F - I), the stress and tensorial history are rotated
+       * and updated by update_cauchy_stress() with the D and W of the
+       * mid-step velocity gradient (F - F_old) F_mid^-1 / dt, and pulled
+       * back to S = J F^-1 sigma F^-T. With @p dt = 0 it only records F.
+       */
+      void update_pk2_by_rate_form(const double *F,
+                                   double        dt,
+                                   double       *S,
+                                   double       *history,
+                                   unsigned int  F_offset) const;
     };
 
 

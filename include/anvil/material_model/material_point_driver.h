@@ -21,8 +21,10 @@ namespace anvil::MaterialModel
    * a control strain at a constant rate, and writes
    * `time,strain_xx..strain_xz,stress_xx..stress_xz,<history>` as CSV.
    *
-   * Modes: uniaxial stress (the lateral strains are found by Newton
-   * iteration so that the lateral Cauchy stresses vanish), uniaxial strain,
+   * Modes: uniaxial stress (the lateral strains are found by secant
+   * iteration so that the lateral Cauchy stresses equal a given value, zero
+   * or a confining pressure), biaxial stress (equal strains in x and y,
+   * sigma_zz = 0), uniaxial strain,
    * simple shear (velocity gradient L_xy only: the material rotates), and
    * the uniaxial (truss) form of the model. The 3D modes evaluate the model
    * in either formulation exactly as the element kernels do: with the
@@ -61,6 +63,8 @@ namespace anvil::MaterialModel
     Formulation                formulation;
     std::string                mode;
     double                     strain_rate;
+    double                     lateral_stress        = 0;
+    double                     characteristic_length = 0.1;
     double                     increment;
     std::vector<double>        path;
     std::string                output_file;

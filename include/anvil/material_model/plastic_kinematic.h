@@ -119,6 +119,10 @@ namespace anvil::MaterialModel
               "effective_plastic_strain", "plastic_work_density",
               "effective_strain_rate"};
     }
+    int dissipation_index() const override
+    {
+      return 7;
+    }
     unsigned int n_uniaxial_history() const override
     {
       return 3;

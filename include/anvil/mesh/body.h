@@ -54,6 +54,10 @@ namespace anvil
       return material->is_rigid();
     }
 
+    /** Strength factor of an element with reference centroid @p centroid:
+        the imperfection's inside its box, 1 elsewhere. */
+    double strength_factor(const dealii::Point<3> &centroid) const;
+
   private:
     std::string          mesh_source;
     dealii::Point<3>     lower, upper;
@@ -65,5 +69,8 @@ namespace anvil
     dealii::Tensor<1, 3> offset;
     double               scale = 1;
     unsigned int         refinements = 0;
+    bool                 has_imperfection    = false;
+    dealii::Point<3>     imperfection_lower, imperfection_upper;
+    double               imperfection_factor = 1.;
   };
 } // namespace anvil

@@ -1,0 +1,274 @@
+/**
+ * @file
+ * Concrete damaged plasticity (Lubliner et al. 1989, Lee & Fenves 1998), the
+ * model ABAQUS calls *CONCRETE DAMAGED PLASTICITY and the seed uses for its
+ * column (section 5.2), with uniaxial curves generated from f'c by the fib
+ * Model Code 2010, crack-band regularisation of tension softening and the
+ * dynamic increase factors of seed Eqs. (64)-(67).
+ */
+#pragma once
+
+#include <anvil/material_model/elastic.h>
+
+#include <string>
+#include <vector>
+
+namespace anvil::MaterialModel
+{
+  /** A piecewise-linear function, constant beyond its last point. */
+  class PiecewiseLinear
+  {
+  public:
+    PiecewiseLinear() = default;
+    PiecewiseLinear(std::vector<double> x, std::vector<double> y);
+
+    double operator()(const double x) const;
+
+    const std::vector<double> &abscissae() const
+    {
+      return xs;
+    }
+    const std::vector<double> &values() const
+    {
+      return ys;
+    }
+
+  private:
+    std::vector<double> xs, ys;
+  };
+
+
+  /**
+   * The uniaxial behaviour of one concrete: elastic constants, strengths
+   * and the two softening curves, in the form the model consumes.
+   *
+   * - compression: nominal stress against inelastic strain
+   *   eps_in = eps - sigma / E (starting at the initial yield stress
+   *   sigma_c0 at eps_in = 0);
+   * - tension: nominal stress against crack opening w (m), which the model
+   *   turns into a cracking strain w / h over the element's characteristic
+   *   length h (crack band, Bazant & Oh 1983).
+   */
+  struct ConcreteCurves
+  {
+    double          youngs_modulus   = 0;
+    double          compressive_strength = 0;
+    double          tensile_strength = 0;
+    double          fracture_energy  = 0;
+    PiecewiseLinear compression;
+    PiecewiseLinear tension;
+
+    /**
+     * Curves of fib Model Code 2010 (section 5.1) from the mean cylinder
+     * strength @p f_cm (Pa), for 20 MPa <= f_cm <= 128 MPa:
+     * - E_ci = 21.5 GPa (f_cm / 10 MPa)^(1/3), eps_c1 and eps_c,lim from
+     *   Table 5.1-8 (linear in f_ck = f_cm - 8 MPa);
+     * - compression: Eq. (5.1-26), sigma / f_cm = (k eta - eta^2) /
+     *   (1 + (k - 2) eta), eta = eps / eps_c1, k = E_ci eps_c1 / f_cm, up to
+     *   eps_c,lim; beyond, an exponential decay with the same tangent
+     *   towards 0.1 f_cm. Linear up to 0.4 f_cm: E is the secant modulus of
+     *   Eq. (5.1-26) at 0.4 f_cm (0.4 f_cm is the elastic limit sigma_c0);
+     * - tension: f_ctm = 0.3 f_ck^(2/3) (f_ck <= 50 MPa) or
+     *   2.12 ln(1 + f_cm / 10) (Eqs. 5.1-3a,b); linear up to f_ctm, then the
+     *   bilinear softening of Eq. (5.1-9), sigma = f_ctm (1 - 0.8 w / w1)
+     *   up to w1 = G_F / f_ctm and f_ctm (0.25 - 0.05 w / w1) up to
+     *   w_c = 5 G_F / f_ctm, with G_F = 73 f_cm^0.18 N/m (Eq. 5.1-9).
+     * Entries given (> 0) override E, f_t and G_F.
+     */
+    static ConcreteCurves model_code_2010(double f_cm,
+                                          double youngs_modulus   = 0,
+                                          double tensile_strength = 0,
+                                          double fracture_energy  = 0);
+
+    /** Nominal compressive stress of Eq. (5.1-26) and its tail at total
+        strain @p eps (positive in compression), for tests and plots. */
+    static double model_code_2010_stress(double f_cm, double eps);
+  };
+
+
+  /**
+   * The model.
+   *
+   * Effective stress sigma_bar = D_0 : (eps - eps_p) (hypoelastic rate form,
+   * rotated with the material like the stress); nominal stress
+   * sigma = (1 - d) sigma_bar.
+   *
+   * Yield function (Lee & Fenves 1998, ABAQUS Theory Manual 4.5.2):
+   *   F = [q - 3 alpha p + beta <s_max> - gamma <-s_max>] / (1 - alpha)
+   *       - c_c,
+   *   alpha = (r_b - 1) / (2 r_b - 1), r_b = sigma_b0 / sigma_c0,
+   *   beta  = c_c / c_t (1 - alpha) - (1 + alpha),
+   *   gamma = 3 (1 - K_c) / (2 K_c - 1),
+   * with p = -tr(sigma_bar) / 3, q the von Mises stress and s_max the
+   * largest principal value of sigma_bar; c_c, c_t the effective cohesions.
+   *
+   * Flow potential (non-associated, hyperbolic Drucker-Prager):
+   *   G = sqrt((e f_t tan psi)^2 + q^2) - p tan psi.
+   *
+   * Hardening: eps_t_p grows by r(sigma) times the largest principal plastic
+   * strain increment, eps_c_p by -(1 - r) times the smallest, with
+   * r = sum <s_i> / sum |s_i|.
+   *
+   * Damage: a fraction b of the inelastic strain is plastic (Birtel & Mark
+   * 2006), eps_p = b eps_in, so that on the uniaxial curve
+   *   d = (1 - b) E eps_in / (sigma + (1 - b) E eps_in),
+   *   c  = sigma / (1 - d) = sigma + (1 - b) E eps_in,
+   * and 1 - d = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
+   * s_c = 1 - w_c (1 - r).
+   *
+   * Return mapping: the potential depends on invariants and D_0 is
+   * isotropic, so the return keeps the principal directions of the trial
+   * stress; the deviator scales by q / q_trial and the mean stress shifts
+   * by -K tan psi dlambda. One scalar equation F(dlambda) = 0 remains,
+   * solved by bracketing (Illinois) with the hardening variables advanced
+   * implicitly; q(dlambda) of the hyperbola by Newton. No eigenvectors are
+   * needed, and the apex and pure tension need no special case.
+   *
+   * Strain-rate effects: the cohesions scale with CDIF and TDIF (seed
+   * Eqs. (64)-(67), concrete_dif.h) of the largest principal strain rate
+   * |D|_max, low-pass filtered with time constant tau.
+   *
+   * Dissipation: per unit volume, sigma : D dt minus the change of the
+   * stored energy (1 - d) sigma_bar : C_0^-1 : sigma_bar / 2.
+   *
+   * History per point: see the indices below; total Lagrangian adds the
+   * previous F - I (9).
+   */
+  class ConcreteDamagedPlasticity : public Elastic
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm) override;
+
+    /** Every constant of the model (unit tests set them directly). */
+    struct Parameters
+    {
+      double         density              = 2400;
+      double         poissons_ratio       = 0.2;
+      ConcreteCurves curves;
+      double         dilation_angle       = 36. * 3.14159265358979323846 / 180.;
+      double         eccentricity         = 0.1;
+      double         biaxial_ratio        = 1.16;
+      double         K_c                  = 2. / 3.;
+      double         viscosity            = 0;
+      double         compressive_plastic_fraction = 0.7;
+      double         tensile_plastic_fraction     = 0.1;
+      double         tensile_recovery     = 0;
+      double         compressive_recovery = 1;
+      bool           rate_effects         = false;
+      double         cube_strength        = 0;
+      double         rate_filter_time     = 0;
+      bool           erosion              = false;
+      double         erosion_principal_strain = 0;
+      double         erosion_damage       = 0;
+    };
+
+    void set(const Parameters &p);
+    const Parameters &get_parameters() const
+    {
+      return par;
+    }
+
+    // History layout of one point.
+    static constexpr unsigned int i_tensile_damage     = 0;
+    static constexpr unsigned int i_compressive_damage = 1;
+    static constexpr unsigned int i_damage             = 2;
+    static constexpr unsigned int i_kappa_t            = 3;
+    static constexpr unsigned int i_kappa_c            = 4;
+    static constexpr unsigned int i_dissipation        = 5;
+    static constexpr unsigned int i_rate               = 6;
+    static constexpr unsigned int i_cdif               = 7;
+    static constexpr unsigned int i_tdif               = 8;
+    static constexpr unsigned int i_max_strain         = 9;
+    static constexpr unsigned int i_effective_stress   = 10;
+    static constexpr unsigned int i_strain             = 16;
+    static constexpr unsigned int i_length             = 22;
+    static constexpr unsigned int i_strength_factor    = 23;
+    static constexpr unsigned int i_viscous_stress     = 24;
+    static constexpr unsigned int i_rate_started       = 30;
+    static constexpr unsigned int n_ul_history         = 31;
+
+    unsigned int n_history(const Formulation f) const override
+    {
+      return f == Formulation::total_lagrangian ? n_ul_history + 9 : n_ul_history;
+    }
+    std::vector<std::string> history_names() const override;
+    int dissipation_index() const override
+    {
+      return i_dissipation;
+    }
+
+    void initialize_history(double *history, const PointData &data) const override;
+    bool accepts_strength_factor() const override
+    {
+      return true;
+    }
+
+    bool has_uniaxial_form() const override
+    {
+      return false;
+    }
+    bool erodes() const override
+    {
+      return par.erosion;
+    }
+    bool point_failed(const double *history) const override;
+
+    bool has_tensorial_history() const override
+    {
+      return true;
+    }
+    void rotate_history(double w01, double w12, double w02, double dt,
+                        double *history) const override;
+
+    void update_cauchy_stress(const double *D,
+                              double        dt,
+                              double       *stress,
+                              double       *history) const override;
+
+    void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                    double dt,
+                                    double (&stress)[6][batch_size],
+                                    double *const (&history)[batch_size]) const override
+    {
+      Interface::update_cauchy_stress_batch(D, dt, stress, history);
+    }
+
+    void compute_pk2_stress(const double *F,
+                            const double *E,
+                            double       *S,
+                            double       *history) const override;
+
+    void update_pk2_stress(const double *F,
+                           const double *E,
+                           double        dt,
+                           double       *S,
+                           double       *history) const override;
+
+    /** Static tensile damage and effective cohesion at hardening variable
+        @p kappa_t, characteristic length @p h and strength factor @p f. */
+    void tension(double kappa_t, double h, double f, double &damage, double &cohesion) const;
+    /** Static compressive damage and effective cohesion. */
+    void compression(double kappa_c, double f, double &damage, double &cohesion) const;
+
+    /** The yield function's alpha and gamma. */
+    double get_alpha() const
+    {
+      return alpha;
+    }
+    double get_gamma() const
+    {
+      return gamma;
+    }
+
+  private:
+    /** Return the effective stress @p sbar (trial on entry) to the yield
+        surface; advances the hardening variables in @p h. Writes the
+        principal values of the result into @p principal. */
+    void return_map(double *sbar, double *h, double cdif, double tdif,
+                    double (&principal)[3]) const;
+
+    Parameters par;
+    double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
+  };
+} // namespace anvil::MaterialModel

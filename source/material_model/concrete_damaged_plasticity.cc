@@ -1,0 +1,648 @@
+/**
+ * @file
+ * Concrete damaged plasticity. See concrete_damaged_plasticity.h.
+ */
+#include <anvil/kinematics/rotation.h>
+#include <anvil/kinematics/tensor3.h>
+#include <anvil/material_model/concrete_damaged_plasticity.h>
+#include <anvil/material_model/concrete_dif.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace anvil::MaterialModel
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    const std::string where = "subsection 'concrete damaged plasticity': ";
+
+    // "e1:s1, e2:s2, ..." into two columns.
+    void parse_table(const std::string &entry,
+                     const std::string &text,
+                     std::vector<double> &x,
+                     std::vector<double> &y)
+    {
+      for (const auto &pair : dealii::Utilities::split_string_list(text, ','))
+        {
+          const auto parts = dealii::Utilities::split_string_list(pair, ':');
+          try
+            {
+              if (parts.size() != 2)
+                throw std::invalid_argument(pair);
+              x.push_back(std::stod(parts[0]));
+              y.push_back(std::stod(parts[1]));
+            }
+          catch (const std::exception &)
+            {
+              throw InputError(where + "entry '" + entry + "': '" + pair +
+                               "' is not a pair 'abscissa:stress' of numbers");
+            }
+        }
+      if (x.size() < 2)
+        throw InputError(where + "entry '" + entry + "' needs at least two pairs");
+      if (x.front() != 0.)
+        throw InputError(where + "entry '" + entry + "' must start at abscissa 0");
+      for (unsigned int i = 1; i < x.size(); ++i)
+        if (!(x[i] > x[i - 1]))
+          throw InputError(where + "entry '" + entry + "': abscissae must increase");
+      for (const double v : y)
+        if (v < 0)
+          throw InputError(where + "entry '" + entry + "': stresses must be >= 0 (magnitudes)");
+      if (!(y.front() > 0))
+        throw InputError(where + "entry '" + entry + "': the first stress (the elastic "
+                                 "limit) must be positive");
+    }
+  } // namespace
+
+
+  // @sect3{Parameters}
+  void ConcreteDamagedPlasticity::declare_parameters(dealii::ParameterHandler &prm)
+  {
+    using namespace dealii;
+    prm.declare_entry("Compressive strength",
+                      "0",
+                      Patterns::Double(0.),
+                      "Mean uniaxial (cylinder) compressive strength f'c = f_cm, "
+                      "required. Units: Pa.");
+    prm.declare_entry("Density", "2400", Patterns::Double(0.), "Units: kg/m^3.");
+    prm.declare_entry("Poisson's ratio", "0.2", Patterns::Double(-1., 0.5), "Units: none.");
+    prm.declare_entry("Curves",
+                      "Model Code 2010",
+                      Patterns::Selection("Model Code 2010|tabulated"),
+                      "Where the uniaxial curves come from: 'Model Code 2010' "
+                      "(generated from f'c, fib MC2010 section 5.1: Eq. (5.1-26) "
+                      "in compression, bilinear softening with G_F in tension) "
+                      "or 'tabulated' (the two tables below).");
+    prm.declare_entry("Young's modulus",
+                      "",
+                      Patterns::Anything(),
+                      "Empty: the secant modulus of the generated curve at "
+                      "0.4 f'c. Required with tabulated curves. Units: Pa.");
+    prm.declare_entry("Tensile strength",
+                      "",
+                      Patterns::Anything(),
+                      "Empty: MC2010 f_ctm (generated curves). Units: Pa.");
+    prm.declare_entry("Fracture energy",
+                      "",
+                      Patterns::Anything(),
+                      "Mode-I fracture energy G_F. Empty: MC2010 "
+                      "73 f_cm^0.18 N/m. Units: J/m^2.");
+    prm.declare_entry("Compression table",
+                      "",
+                      Patterns::Anything(),
+                      "Tabulated curves: 'inelastic strain:stress, ...' in "
+                      "compression (magnitudes), starting at 0:sigma_c0. Units: "
+                      "none:Pa.");
+    prm.declare_entry("Tension table",
+                      "",
+                      Patterns::Anything(),
+                      "Tabulated curves: 'crack opening:stress, ...' in tension, "
+                      "starting at 0:f_t; the opening is spread over the "
+                      "element's characteristic length (crack band). Units: m:Pa.");
+    prm.declare_entry("Dilation angle",
+                      "",
+                      Patterns::Anything(),
+                      "Dilation angle psi of the flow potential, required, "
+                      "0 < psi < 60; typical 30-40 (ABAQUS examples use 36-38; "
+                      "the concrete_cylinder scene 36). Units: degrees.");
+    prm.declare_entry("Eccentricity", "0.1", Patterns::Double(0.), "Flow potential eccentricity e. Units: none.");
+    prm.declare_entry("Biaxial strength ratio",
+                      "1.16",
+                      Patterns::Double(1.),
+                      "sigma_b0 / sigma_c0, equibiaxial over uniaxial compressive "
+                      "strength, 1 <= ratio < 2 (yield function alpha). Units: none.");
+    prm.declare_entry("K_c",
+                      "0.666666666667",
+                      Patterns::Double(0.5, 1.),
+                      "Ratio of the second stress invariants on the tensile and "
+                      "compressive meridians, 0.5 < K_c <= 1 (yield function "
+                      "gamma). Units: none.");
+    prm.declare_entry("Viscosity",
+                      "0",
+                      Patterns::Double(0.),
+                      "Duvaut-Lions viscoplastic regularisation time mu applied "
+                      "to the effective stress and the damage; 0: none. Units: s.");
+    prm.declare_entry("Compressive plastic fraction",
+                      "0.7",
+                      Patterns::Double(0., 1.),
+                      "b_c: plastic part of the inelastic strain in compression "
+                      "(Birtel & Mark 2006); the rest is damage. 0 < b_c <= 1. "
+                      "Units: none.");
+    prm.declare_entry("Tensile plastic fraction",
+                      "0.1",
+                      Patterns::Double(0., 1.),
+                      "b_t: plastic part of the cracking strain, 0 < b_t < 1 "
+                      "(Birtel & Mark 2006). Units: none.");
+    prm.declare_entry("Tensile stiffness recovery",
+                      "0",
+                      Patterns::Double(0., 1.),
+                      "w_t: tensile stiffness regained when cracks closed in "
+                      "compression reopen. Units: none.");
+    prm.declare_entry("Compressive stiffness recovery",
+                      "1",
+                      Patterns::Double(0., 1.),
+                      "w_c: compressive stiffness regained when cracks close "
+                      "(1: full). Units: none.");
+    prm.declare_entry("Strain rate effects",
+                      "false",
+                      Patterns::Bool(),
+                      "Scale the compressive cohesion by CDIF (seed Eqs. "
+                      "(64)-(65), continuous form) and the tensile one by TDIF "
+                      "(Eqs. (66)-(67)) of the filtered largest principal strain "
+                      "rate. Off: no rate is computed.");
+    prm.declare_entry("Cube strength",
+                      "",
+                      Patterns::Anything(),
+                      "f_cu of Eq. (64). Empty: f'c / 0.8 (MC2010 cylinder over "
+                      "cube strength). Units: Pa.");
+    prm.declare_entry("Strain rate filter time",
+                      "5e-6",
+                      Patterns::Double(0.),
+                      "Time constant tau of the low-pass filter on the strain "
+                      "rate, rate += (rate_now - rate) dt / (tau + dt), started "
+                      "at the first step's rate; 0: unfiltered. Units: s.");
+    prm.declare_entry("Erosion",
+                      "false",
+                      Patterns::Bool(),
+                      "Erode an element when one of its points reaches "
+                      "'Erosion principal strain' or 'Erosion damage' (those "
+                      "that are > 0).");
+    prm.declare_entry("Erosion principal strain",
+                      "0",
+                      Patterns::Double(0.),
+                      "Largest principal (accumulated logarithmic) strain at "
+                      "which a point fails; 0: not used. Units: none.");
+    prm.declare_entry("Erosion damage",
+                      "0",
+                      Patterns::Double(0., 1.),
+                      "Damage d at which a point fails; 0: not used. Units: none.");
+  }
+
+
+  void ConcreteDamagedPlasticity::parse_parameters(dealii::ParameterHandler &prm)
+  {
+    auto optional = [&](const std::string &entry) {
+      const std::string text = dealii::Utilities::trim(prm.get(entry));
+      if (text.empty())
+        return 0.;
+      try
+        {
+          std::size_t used = 0;
+          const double v   = std::stod(text, &used);
+          if (used != text.size() || !(v > 0))
+            throw std::invalid_argument(text);
+          return v;
+        }
+      catch (const std::exception &)
+        {
+          throw InputError(where + "entry '" + entry + "' = '" + text +
+                           "' is not a positive number (allowed: a positive "
+                           "number, or empty)");
+        }
+    };
+
+    Parameters p;
+    const double f_c = prm.get_double("Compressive strength");
+    if (!(f_c > 0))
+      throw InputError(where + "entry 'Compressive strength' must be given (> 0, in Pa)");
+    p.density        = prm.get_double("Density");
+    if (!(p.density > 0))
+      throw InputError(where + "entry 'Density' must be positive");
+    p.poissons_ratio = prm.get_double("Poisson's ratio");
+    if (p.poissons_ratio <= -1. || p.poissons_ratio >= 0.5)
+      throw InputError(where + "entry 'Poisson's ratio' must satisfy -1 < nu < 0.5");
+
+    if (prm.get("Curves") == "Model Code 2010")
+      {
+        try
+          {
+            p.curves = ConcreteCurves::model_code_2010(f_c,
+                                                       optional("Young's modulus"),
+                                                       optional("Tensile strength"),
+                                                       optional("Fracture energy"));
+          }
+        catch (const InputError &e)
+          {
+            throw InputError(where + "entry 'Compressive strength': " + e.what());
+          }
+      }
+    else
+      {
+        std::vector<double> ec, sc, wt, st;
+        parse_table("Compression table", prm.get("Compression table"), ec, sc);
+        parse_table("Tension table", prm.get("Tension table"), wt, st);
+        p.curves.youngs_modulus = optional("Young's modulus");
+        if (!(p.curves.youngs_modulus > 0))
+          throw InputError(where + "entry 'Young's modulus' is required with tabulated curves");
+        p.curves.compressive_strength = f_c;
+        p.curves.tensile_strength     = st.front();
+        double G = 0;
+        for (unsigned int i = 1; i < wt.size(); ++i)
+          G += 0.5 * (st[i] + st[i - 1]) * (wt[i] - wt[i - 1]);
+        p.curves.fracture_energy = G;
+        if (st.back() != 0.)
+          throw InputError(where + "entry 'Tension table' must end at stress 0 "
+                                   "(a finite fracture energy)");
+        p.curves.compression = PiecewiseLinear(ec, sc);
+        p.curves.tension     = PiecewiseLinear(wt, st);
+      }
+
+    const std::string psi = dealii::Utilities::trim(prm.get("Dilation angle"));
+    const double      psi_deg = psi.empty() ? 0. : optional("Dilation angle");
+    if (!(psi_deg > 0) || !(psi_deg < 60))
+      throw InputError(where + "entry 'Dilation angle' must be given in degrees, "
+                               "0 < psi < 60 (typical 30-40)");
+    p.dilation_angle = psi_deg * pi / 180.;
+    p.eccentricity   = prm.get_double("Eccentricity");
+    p.biaxial_ratio  = prm.get_double("Biaxial strength ratio");
+    if (!(p.biaxial_ratio < 2.))
+      throw InputError(where + "entry 'Biaxial strength ratio' must satisfy 1 <= ratio < 2");
+    p.K_c = prm.get_double("K_c");
+    if (!(p.K_c > 0.5))
+      throw InputError(where + "entry 'K_c' must satisfy 0.5 < K_c <= 1");
+    p.viscosity                    = prm.get_double("Viscosity");
+    p.compressive_plastic_fraction = prm.get_double("Compressive plastic fraction");
+    p.tensile_plastic_fraction     = prm.get_double("Tensile plastic fraction");
+    if (!(p.compressive_plastic_fraction > 0))
+      throw InputError(where + "entry 'Compressive plastic fraction' must satisfy 0 < b_c <= 1");
+    if (!(p.tensile_plastic_fraction > 0) || !(p.tensile_plastic_fraction < 1))
+      throw InputError(where + "entry 'Tensile plastic fraction' must satisfy 0 < b_t < 1");
+    p.tensile_recovery     = prm.get_double("Tensile stiffness recovery");
+    p.compressive_recovery = prm.get_double("Compressive stiffness recovery");
+    p.rate_effects         = prm.get_bool("Strain rate effects");
+    p.cube_strength        = optional("Cube strength");
+    if (p.cube_strength == 0.)
+      p.cube_strength = f_c / 0.8;
+    p.rate_filter_time         = prm.get_double("Strain rate filter time");
+    p.erosion                  = prm.get_bool("Erosion");
+    p.erosion_principal_strain = prm.get_double("Erosion principal strain");
+    p.erosion_damage           = prm.get_double("Erosion damage");
+    if (p.erosion && p.erosion_principal_strain == 0. && p.erosion_damage == 0.)
+      throw InputError(where + "'Erosion = true' needs 'Erosion principal strain' "
+                               "or 'Erosion damage' > 0");
+    set(p);
+  }
+
+
+  void ConcreteDamagedPlasticity::set(const Parameters &p)
+  {
+    par = p;
+    Elastic::set(p.density, p.curves.youngs_modulus, p.poissons_ratio);
+    alpha          = (p.biaxial_ratio - 1.) / (2. * p.biaxial_ratio - 1.);
+    gamma          = 3. * (1. - p.K_c) / (2. * p.K_c - 1.);
+    tan_psi        = std::tan(p.dilation_angle);
+    eccentric_term = p.eccentricity * p.curves.tensile_strength * tan_psi;
+    if (!p.erosion)
+      par.erosion_principal_strain = par.erosion_damage = 0.;
+  }
+
+
+  std::vector<std::string> ConcreteDamagedPlasticity::history_names() const
+  {
+    std::vector<std::string> names = {"tensile_damage",
+                                      "compressive_damage",
+                                      "damage",
+                                      "tensile_equivalent_plastic_strain",
+                                      "compressive_equivalent_plastic_strain",
+                                      "dissipated_energy_density",
+                                      "",
+                                      "",
+                                      "",
+                                      ""};
+    if (par.rate_effects)
+      {
+        names[i_rate] = "strain_rate";
+        names[i_cdif] = "compressive_DIF";
+        names[i_tdif] = "tensile_DIF";
+      }
+    if (par.erosion_principal_strain > 0)
+      names[i_max_strain] = "max_principal_strain";
+    return names;
+  }
+
+
+  void ConcreteDamagedPlasticity::initialize_history(double *h, const PointData &data) const
+  {
+    h[i_length]          = data.characteristic_length;
+    h[i_strength_factor] = data.strength_factor;
+    h[i_cdif]            = 1.;
+    h[i_tdif]            = 1.;
+  }
+
+
+  bool ConcreteDamagedPlasticity::point_failed(const double *h) const
+  {
+    return (par.erosion_principal_strain > 0 && h[i_max_strain] >= par.erosion_principal_strain) ||
+           (par.erosion_damage > 0 && h[i_damage] >= par.erosion_damage);
+  }
+
+
+  void ConcreteDamagedPlasticity::rotate_history(const double w01,
+                                                 const double w12,
+                                                 const double w02,
+                                                 const double dt,
+                                                 double      *h) const
+  {
+    Kinematics::rotate_stress(w01, w12, w02, dt, h + i_effective_stress);
+    if (par.erosion_principal_strain > 0)
+      Kinematics::rotate_stress(w01, w12, w02, dt, h + i_strain);
+    if (par.viscosity > 0)
+      Kinematics::rotate_stress(w01, w12, w02, dt, h + i_viscous_stress);
+  }
+
+
+  // @sect3{Uniaxial damage and cohesion}
+  //
+  // With eps_p = b eps_in on the uniaxial curve sigma(eps_in):
+  // d = (1 - b) E eps_in / (sigma + (1 - b) E eps_in) and the effective
+  // cohesion c = sigma / (1 - d) = sigma + (1 - b) E eps_in.
+  void ConcreteDamagedPlasticity::tension(const double kappa_t,
+                                          const double h,
+                                          const double f,
+                                          double      &damage,
+                                          double      &cohesion) const
+  {
+    const double b     = par.tensile_plastic_fraction;
+    const double e_in  = kappa_t / b;
+    const double sigma = f * par.curves.tension(h * e_in);
+    const double X     = (1. - b) * youngs_modulus() * e_in;
+    cohesion           = sigma + X;
+    damage             = cohesion > 0 ? X / cohesion : 0.;
+  }
+
+
+  void ConcreteDamagedPlasticity::compression(const double kappa_c,
+                                              const double f,
+                                              double      &damage,
+                                              double      &cohesion) const
+  {
+    const double b     = par.compressive_plastic_fraction;
+    const double e_in  = kappa_c / b;
+    const double sigma = f * par.curves.compression(e_in);
+    const double X     = (1. - b) * youngs_modulus() * e_in;
+    cohesion           = sigma + X;
+    damage             = cohesion > 0 ? X / cohesion : 0.;
+  }
+
+
+  // @sect3{The return mapping}
+  void ConcreteDamagedPlasticity::return_map(double       *sbar,
+                                             double       *h,
+                                             const double  cdif,
+                                             const double  tdif,
+                                             double (&principal)[3]) const
+  {
+    double sp[3];
+    Kinematics::principal_values(sbar, sp);
+    const double mean_tr = (sp[0] + sp[1] + sp[2]) / 3.;
+    const double s_tr[3] = {sp[0] - mean_tr, sp[1] - mean_tr, sp[2] - mean_tr};
+    const double q_tr =
+      std::sqrt(1.5 * (s_tr[0] * s_tr[0] + s_tr[1] * s_tr[1] + s_tr[2] * s_tr[2]));
+    const double kt0 = h[i_kappa_t], kc0 = h[i_kappa_c];
+    const double len = h[i_length], f = h[i_strength_factor];
+    const double K   = bulk_modulus();
+    const double a2  = eccentric_term * eccentric_term;
+
+    auto weight = [](const double (&s)[3]) {
+      const double num = std::max(s[0], 0.) + std::max(s[1], 0.) + std::max(s[2], 0.);
+      const double den = std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]);
+      return den > 0 ? num / den : 0.;
+    };
+    auto yield = [&](const double q, const double mean, const double s_max, const double kt,
+                     const double kc) {
+      double dt_, ct, dc_, cc;
+      tension(kt, len, f, dt_, ct);
+      compression(kc, f, dc_, cc);
+      ct *= tdif;
+      cc *= cdif;
+      const double beta = cc / ct * (1. - alpha) - (1. + alpha);
+      return (q + 3. * alpha * mean + beta * std::max(s_max, 0.) + gamma * std::min(s_max, 0.)) /
+               (1. - alpha) -
+             cc;
+    };
+
+    const double F0  = yield(q_tr, mean_tr, sp[0], kt0, kc0);
+    const double tol = 1e-10 * par.curves.compressive_strength;
+    if (!(F0 > tol))
+      {
+        std::copy(sp, sp + 3, principal);
+        return;
+      }
+
+    // The state after plastic multiplier dl: q by Newton on
+    // q (1 + 3 G dl / sqrt(a^2 + q^2)) = q_tr (from q_tr downwards: the
+    // left side is concave, so the iterates approach monotonically).
+    struct State
+    {
+      double q, mean, s[3], kt, kc, F;
+    };
+    auto evaluate = [&](const double dl) {
+      State        st;
+      const double c3 = 3. * mu * dl;
+      double       q  = q_tr;
+      for (unsigned int it = 0; it < 50 && q > 0; ++it)
+        {
+          const double Q  = std::sqrt(a2 + q * q);
+          const double g  = q * (1. + c3 / Q) - q_tr;
+          const double dg = 1. + c3 * a2 / (Q * Q * Q);
+          const double dq = g / dg;
+          q               = std::max(q - dq, 0.);
+          if (std::abs(dq) <= 1e-15 * q_tr)
+            break;
+        }
+      const double scale = q_tr > 0 ? q / q_tr : 0.;
+      st.q               = q;
+      st.mean            = mean_tr - K * tan_psi * dl;
+      for (unsigned int i = 0; i < 3; ++i)
+        st.s[i] = st.mean + scale * s_tr[i];
+      const double Q   = std::sqrt(a2 + q * q);
+      const double de1 = dl * (1.5 * scale * s_tr[0] / Q + tan_psi / 3.);
+      const double de3 = dl * (1.5 * scale * s_tr[2] / Q + tan_psi / 3.);
+      const double r   = weight(st.s);
+      st.kt            = kt0 + r * std::max(de1, 0.);
+      st.kc            = kc0 + (1. - r) * std::max(-de3, 0.);
+      st.F             = yield(q, st.mean, st.s[0], st.kt, st.kc);
+      return st;
+    };
+
+    // Bracket the root, then Illinois (regula falsi that halves the weight
+    // of a retained end).
+    double lo = 0, Flo = F0;
+    double hi = F0 * (1. - alpha) / (3. * mu + 3. * alpha * K * tan_psi);
+    State  s_hi = evaluate(hi);
+    for (unsigned int it = 0; it < 200 && s_hi.F > 0; ++it)
+      {
+        lo   = hi;
+        Flo  = s_hi.F;
+        hi   = 2. * hi;
+        s_hi = evaluate(hi);
+      }
+    double Fhi = s_hi.F;
+    State  st  = s_hi;
+    int    side = 0;
+    for (unsigned int it = 0; it < 200 && std::abs(st.F) > tol; ++it)
+      {
+        const double dl = (lo * Fhi - hi * Flo) / (Fhi - Flo);
+        st              = evaluate(dl);
+        if (st.F > 0)
+          {
+            lo  = dl;
+            Flo = st.F;
+            if (side == 1)
+              Fhi *= 0.5;
+            side = 1;
+          }
+        else
+          {
+            hi  = dl;
+            Fhi = st.F;
+            if (side == -1)
+              Flo *= 0.5;
+            side = -1;
+          }
+        if (hi - lo <= 1e-15 * hi)
+          break;
+      }
+
+    const double scale = q_tr > 0 ? st.q / q_tr : 0.;
+    const double m_old = (sbar[0] + sbar[1] + sbar[2]) / 3.;
+    for (unsigned int k = 0; k < 6; ++k)
+      sbar[k] = (k < 3 ? st.mean + scale * (sbar[k] - m_old) : scale * sbar[k]);
+    h[i_kappa_t] = st.kt;
+    h[i_kappa_c] = st.kc;
+    std::copy(st.s, st.s + 3, principal);
+  }
+
+
+  // @sect3{The stress update}
+  void ConcreteDamagedPlasticity::update_cauchy_stress(const double *D,
+                                                       const double  dt,
+                                                       double       *stress,
+                                                       double       *h) const
+  {
+    // Stored energy (1 - d) sigma_bar : C^-1 : sigma_bar / 2 and nominal
+    // stress before the step, for the dissipation.
+    const double nu           = par.poissons_ratio;
+    auto         stored       = [&](const double *sb, const double d) {
+      const double tr2 = (sb[0] + sb[1] + sb[2]) * (sb[0] + sb[1] + sb[2]);
+      const double ss  = sb[0] * sb[0] + sb[1] * sb[1] + sb[2] * sb[2] +
+                        2. * (sb[3] * sb[3] + sb[4] * sb[4] + sb[5] * sb[5]);
+      return 0.5 * (1. - d) * ((1. + nu) * ss - nu * tr2) / youngs_modulus();
+    };
+    const bool   viscous      = par.viscosity > 0 && dt > 0;
+    const double stored_old   = stored(h + (viscous ? i_viscous_stress : i_effective_stress), h[i_damage]);
+    double       old_work[6];
+    std::copy(stress, stress + 6, old_work);
+
+    // Elastic increment of the effective stress.
+    const double tr = D[0] + D[1] + D[2];
+    double       dsig[6];
+    for (unsigned int k = 0; k < 6; ++k)
+      dsig[k] = (k < 3 ? lambda * tr + 2. * mu * D[k] : 2. * mu * D[k]) * dt;
+    double *sbar = h + i_effective_stress;
+    for (unsigned int k = 0; k < 6; ++k)
+      sbar[k] += dsig[k];
+
+    if (par.erosion_principal_strain > 0)
+      {
+        double *eps = h + i_strain;
+        for (unsigned int k = 0; k < 6; ++k)
+          eps[k] += D[k] * dt;
+        double e[3];
+        Kinematics::principal_values(eps, e);
+        h[i_max_strain] = e[0];
+      }
+
+    double cdif = 1., tdif = 1.;
+    if (par.rate_effects && dt > 0)
+      {
+        double d[3];
+        Kinematics::principal_values(D, d);
+        const double now = std::max(std::abs(d[0]), std::abs(d[2]));
+        if (h[i_rate_started] == 0.)
+          {
+            h[i_rate]         = now;
+            h[i_rate_started] = 1.;
+          }
+        else
+          h[i_rate] += (now - h[i_rate]) * dt / (par.rate_filter_time + dt);
+        cdif      = ConcreteDIF::compressive(h[i_rate], par.cube_strength);
+        tdif      = ConcreteDIF::tensile(h[i_rate], par.curves.compressive_strength);
+        h[i_cdif] = cdif;
+        h[i_tdif] = tdif;
+      }
+
+    double principal[3];
+    return_map(sbar, h, cdif, tdif, principal);
+
+    // Damage: 1 - d = (1 - s_t d_c)(1 - s_c d_t).
+    double d_t, d_c, c_t, c_c;
+    tension(h[i_kappa_t], h[i_length], h[i_strength_factor], d_t, c_t);
+    compression(h[i_kappa_c], h[i_strength_factor], d_c, c_c);
+    const double num = std::max(principal[0], 0.) + std::max(principal[1], 0.) +
+                       std::max(principal[2], 0.);
+    const double den = std::abs(principal[0]) + std::abs(principal[1]) + std::abs(principal[2]);
+    const double r   = den > 0 ? num / den : 0.;
+    const double s_t = 1. - par.tensile_recovery * r;
+    const double s_c = 1. - par.compressive_recovery * (1. - r);
+    const double d   = 1. - (1. - s_t * d_c) * (1. - s_c * d_t);
+    h[i_tensile_damage]     = d_t;
+    h[i_compressive_damage] = d_c;
+
+    if (viscous)
+      {
+        // Duvaut-Lions: the viscous state relaxes towards the inviscid one.
+        const double eta = dt / par.viscosity;
+        double      *sv  = h + i_viscous_stress;
+        for (unsigned int k = 0; k < 6; ++k)
+          sv[k] = (sv[k] + dsig[k] + eta * sbar[k]) / (1. + eta);
+        h[i_damage] = (h[i_damage] + eta * d) / (1. + eta);
+        for (unsigned int k = 0; k < 6; ++k)
+          stress[k] = (1. - h[i_damage]) * sv[k];
+      }
+    else
+      {
+        h[i_damage] = d;
+        for (unsigned int k = 0; k < 6; ++k)
+          stress[k] = (1. - d) * sbar[k];
+      }
+    // Dissipation: mid-step stress power minus the change of stored energy.
+    double work = 0;
+    for (unsigned int k = 0; k < 6; ++k)
+      work += (k < 3 ? 1. : 2.) * 0.5 * (old_work[k] + stress[k]) * D[k] * dt;
+    h[i_dissipation] +=
+      work - stored(h + (viscous ? i_viscous_stress : i_effective_stress), h[i_damage]) + stored_old;
+  }
+
+
+  // @sect3{Total Lagrangian}
+  void ConcreteDamagedPlasticity::compute_pk2_stress(const double *F,
+                                                     const double *E,
+                                                     double       *S,
+                                                     double       *history) const
+  {
+    update_pk2_stress(F, E, 0., S, history);
+  }
+
+
+  void ConcreteDamagedPlasticity::update_pk2_stress(const double *F,
+                                                    const double *,
+                                                    const double dt,
+                                                    double      *S,
+                                                    double      *h) const
+  {
+    update_pk2_by_rate_form(F, dt, S, h, n_ul_history);
+  }
+
+
+  ANVIL_REGISTER_MATERIAL_MODEL(
+    ConcreteDamagedPlasticity,
+    "concrete damaged plasticity",
+    "concrete damaged plasticity (Lubliner / Lee-Fenves, ABAQUS CDP) with "
+    "curves from f'c by fib Model Code 2010, crack-band tension softening "
+    "and the dynamic increase factors of seed Eqs. (64)-(67).")
+} // namespace anvil::MaterialModel
