@@ -114,7 +114,10 @@ namespace anvil::MaterialModel
    *   d = (1 - b) E eps_in / (sigma + (1 - b) E eps_in),
    *   c  = sigma / (1 - d) = sigma + (1 - b) E eps_in,
    * and 1 - d = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
-   * s_c = 1 - w_c (1 - r).
+   * s_c = 1 - w_c (1 - r) (output, erosion). The stress applies the r = 1
+   * factor to the tensile principal part of sigma_bar and the r = 0 factor
+   * to the compressive part: the same in uniaxial states, and no spurious
+   * tension across an open crack in mixed ones (see nominal_stress()).
    *
    * Return mapping: the potential depends on invariants and D_0 is
    * isotropic, so the return keeps the principal directions of the trial
@@ -129,7 +132,7 @@ namespace anvil::MaterialModel
    * |D|_max, low-pass filtered with time constant tau.
    *
    * Dissipation: per unit volume, sigma : D dt minus the change of the
-   * stored energy (1 - d) sigma_bar : C_0^-1 : sigma_bar / 2.
+   * stored energy sigma : C_0^-1 : sigma_bar / 2.
    *
    * History per point: see the indices below; total Lagrangian adds the
    * previous F - I (9).
@@ -267,6 +270,15 @@ namespace anvil::MaterialModel
         principal values of the result into @p principal. */
     void return_map(double *sbar, double *h, double cdif, double tdif,
                     double (&principal)[3]) const;
+
+    /** Nominal stress from the effective stress @p sbar (principal values
+        @p lam) and the damage variables: the tensile and compressive
+        principal parts are degraded separately. */
+    void nominal_stress(const double *sbar, const double (&lam)[3], double d_t, double d_c,
+                        double *stress) const;
+
+    /** sigma : C_0^-1 : sigma_bar / 2, the energy stored in the point. */
+    double stored_energy(const double *sigma, const double *sbar) const;
 
     Parameters par;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
