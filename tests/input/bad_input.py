@@ -57,6 +57,26 @@ cases += [
         entries="set Preset = Table 1 steel\n      set Tangent modulus = 3e11")), 2,
      ["tangent_modulus.prm", "Tangent modulus", "E_t < E"]),
 ]
+concrete = plastic.replace("plastic kinematic", "concrete damaged plasticity")
+cases += [
+    ("no_dilation_angle", dict(mesh="", nu="0.3", extra=concrete.format(
+        entries="set Compressive strength = 45.4e6")), 2,
+     ["no_dilation_angle.prm", "Dilation angle", "0 < psi < 60"]),
+    ("weak_concrete", dict(mesh="", nu="0.3", extra=concrete.format(
+        entries="set Compressive strength = 10e6\n      set Dilation angle = 36")), 2,
+     ["weak_concrete.prm", "Compressive strength", "tabulated"]),
+    ("open_tension_table", dict(mesh="", nu="0.3", extra=concrete.format(
+        entries="set Compressive strength = 45e6\n      set Dilation angle = 36\n"
+                "      set Curves = tabulated\n      set Young's modulus = 3e10\n"
+                "      set Compression table = 0:18e6, 0.001:45e6\n"
+                "      set Tension table = 0:3e6, 1e-4:1e6")), 2,
+     ["open_tension_table.prm", "Tension table", "stress 0"]),
+    ("imperfection_elastic", dict(mesh="", nu="0.3", extra="""  subsection Imperfection
+    set Lower corner = 0, 0, 0
+    set Upper corner = 0.5, 1, 1
+  end"""), 2,
+     ["imperfection_elastic.prm", "Imperfection", "concrete damaged plasticity"]),
+]
 for name, fields, status, words in cases:
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=block.format(**fields))
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
