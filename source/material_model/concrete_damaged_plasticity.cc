@@ -76,7 +76,7 @@ namespace anvil::MaterialModel
                       "Where the uniaxial curves come from: 'Model Code 2010' "
                       "(generated from f'c, fib MC2010 section 5.1: Eq. (5.1-26) "
                       "in compression, bilinear softening with G_F in tension) "
-                      "or 'tabulated' (the two tables below).");
+                      "or 'tabulated' (the two tables below). Units: none.");
     prm.declare_entry("Young's modulus",
                       "",
                       Patterns::Anything(),
