@@ -117,3 +117,16 @@ def max_relative_difference(a, b):
         for x, y in zip(a[k], b[k]):
             worst = max(worst, abs(x - y) / scale)
     return worst
+
+
+def uniaxial_boundary_conditions(body, velocity):
+    """Scene text of the uniaxial-stress box: symmetry planes on the x-, y-
+    and z- faces (boundary ids 0, 2, 4) of 'body', its x+ face (id 1) moving
+    at 'velocity' in x. Name them in 'Boundary conditions' as
+    sym_x, sym_y, sym_z, pull."""
+    text = ""
+    for name, bid, comp in (("sym_x", 0, "x"), ("sym_y", 2, "y"), ("sym_z", 4, "z")):
+        text += (f"subsection Boundary condition {name}\n  set Body = {body}\n"
+                 f"  set Boundary ids = {bid}\n  set Components = {comp}\nend\n")
+    return text + (f"subsection Boundary condition pull\n  set Body = {body}\n  set Boundary ids = 1\n"
+                   f"  set Type = velocity\n  set Velocity = {velocity}, 0, 0\n  set Components = x\nend\n")

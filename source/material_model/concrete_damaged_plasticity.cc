@@ -389,6 +389,15 @@ namespace anvil::MaterialModel
   }
 
 
+  // r = sum <s_i> / sum |s_i| of principal values s (0 at zero stress).
+  double ConcreteDamagedPlasticity::tension_weight(const double (&s)[3])
+  {
+    const double num = std::max(s[0], 0.) + std::max(s[1], 0.) + std::max(s[2], 0.);
+    const double den = std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]);
+    return den > 0 ? num / den : 0.;
+  }
+
+
   // @sect3{The return mapping}
   void ConcreteDamagedPlasticity::return_map(double       *sbar,
                                              double       *h,
@@ -407,11 +416,6 @@ namespace anvil::MaterialModel
     const double K   = bulk_modulus();
     const double a2  = eccentric_term * eccentric_term;
 
-    auto weight = [](const double (&s)[3]) {
-      const double num = std::max(s[0], 0.) + std::max(s[1], 0.) + std::max(s[2], 0.);
-      const double den = std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]);
-      return den > 0 ? num / den : 0.;
-    };
     auto yield = [&](const double q, const double mean, const double s_max, const double kt,
                      const double kc) {
       double dt_, ct, dc_, cc;
@@ -462,7 +466,7 @@ namespace anvil::MaterialModel
       const double Q   = std::sqrt(a2 + q * q);
       const double de1 = dl * (1.5 * scale * s_tr[0] / Q + tan_psi / 3.);
       const double de3 = dl * (1.5 * scale * s_tr[2] / Q + tan_psi / 3.);
-      const double r   = weight(st.s);
+      const double r   = tension_weight(st.s);
       st.kt            = kt0 + r * std::max(de1, 0.);
       st.kc            = kc0 + (1. - r) * std::max(-de3, 0.);
       st.F             = yield(q, st.mean, st.s[0], st.kt, st.kc);
@@ -573,9 +577,7 @@ namespace anvil::MaterialModel
     double principal[3];
     return_map(sbar, h, cdif, tdif, principal);
 
-    // Damage. The scalar of ABAQUS, 1 - d = (1 - s_t d_c)(1 - s_c d_t)
-    // with the weight r, is what output shows and erosion tests; the stress
-    // applies the same factors per principal direction (see nominal_stress).
+    // Damage, the scalar of ABAQUS: 1 - d = (1 - s_t d_c)(1 - s_c d_t).
     double d_t, d_c, c_t, c_c;
     tension(h[i_kappa_t], h[i_length], h[i_strength_factor], d_t, c_t);
     compression(h[i_kappa_c], h[i_strength_factor], d_c, c_c);
@@ -589,16 +591,14 @@ namespace anvil::MaterialModel
         d_c = (h[i_compressive_damage] + eta * d_c) / (1. + eta);
         Kinematics::principal_values(sref, principal);
       }
-    const double num = std::max(principal[0], 0.) + std::max(principal[1], 0.) +
-                       std::max(principal[2], 0.);
-    const double den = std::abs(principal[0]) + std::abs(principal[1]) + std::abs(principal[2]);
-    const double r   = den > 0 ? num / den : 0.;
+    const double r   = tension_weight(principal);
     const double s_t = 1. - par.tensile_recovery * r;
     const double s_c = 1. - par.compressive_recovery * (1. - r);
     h[i_tensile_damage]     = d_t;
     h[i_compressive_damage] = d_c;
     h[i_damage]             = 1. - (1. - s_t * d_c) * (1. - s_c * d_t);
-    nominal_stress(sref, principal, d_t, d_c, stress);
+    for (unsigned int k = 0; k < 6; ++k)
+      stress[k] = (1. - h[i_damage]) * sref[k];
 
     // Dissipation: mid-step stress power minus the change of stored energy.
     double work = 0;
@@ -616,64 +616,6 @@ namespace anvil::MaterialModel
     for (unsigned int k = 0; k < 6; ++k)
       sum += (k < 3 ? 1. : 2.) * sigma[k] * ((1. + nu) * sbar[k] - (k < 3 ? nu * tr : 0.));
     return 0.5 * sum / youngs_modulus();
-  }
-
-
-  // @sect3{Nominal stress}
-  //
-  // The tensile principal part of sigma_bar is degraded by
-  // (1 - (1 - w_t) d_c)(1 - d_t), the compressive part by
-  // (1 - d_c)(1 - (1 - w_c) d_t): the ABAQUS factor with r = 1 and r = 0.
-  // In uniaxial (and any same-sign) states this is the ABAQUS scalar form.
-  // Applied with the weight r to a mixed state, a fully open crack
-  // (d_t -> 1, sigma_bar large) under a little lateral compression gets
-  // (1 - r) sigma_bar, a finite spurious tension that does work: a bar
-  // pulled apart gained more energy than it was given. Per direction, the
-  // open crack carries nothing and the compression stays.
-  void ConcreteDamagedPlasticity::nominal_stress(const double *sbar,
-                                                 const double (&lam)[3],
-                                                 const double d_t,
-                                                 const double d_c,
-                                                 double      *stress) const
-  {
-    const double ft = (1. - (1. - par.tensile_recovery) * d_c) * (1. - d_t);
-    const double fc = (1. - d_c) * (1. - (1. - par.compressive_recovery) * d_t);
-    if (!(lam[0] > 0) || !(lam[2] < 0))
-      {
-        const double f = lam[0] > 0 ? ft : fc;
-        for (unsigned int k = 0; k < 6; ++k)
-          stress[k] = f * sbar[k];
-        return;
-      }
-    // One eigenvalue is alone on its side of zero: the largest if only it
-    // is positive, else the smallest. Its eigenvector is the largest cross
-    // product of two rows of sigma_bar - lambda I.
-    const bool   one_positive = !(lam[1] > 0);
-    const double l            = one_positive ? lam[0] : lam[2];
-    const double rows[3][3]   = {{sbar[0] - l, sbar[3], sbar[5]},
-                                 {sbar[3], sbar[1] - l, sbar[4]},
-                                 {sbar[5], sbar[4], sbar[2] - l}};
-    double       n[3] = {0, 0, 0}, best = 0;
-    for (unsigned int i = 0; i < 3; ++i)
-      {
-        const double *a = rows[i], *b = rows[(i + 1) % 3];
-        const double  c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                              a[0] * b[1] - a[1] * b[0]};
-        const double  m    = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-        if (m > best)
-          {
-            best = m;
-            std::copy(c, c + 3, n);
-          }
-      }
-    const double inv = best > 0 ? 1. / std::sqrt(best) : 0.;
-    for (double &x : n)
-      x *= inv;
-    const double part[6] = {l * n[0] * n[0], l * n[1] * n[1], l * n[2] * n[2],
-                            l * n[0] * n[1], l * n[1] * n[2], l * n[0] * n[2]};
-    const double f_alone = one_positive ? ft : fc, f_rest = one_positive ? fc : ft;
-    for (unsigned int k = 0; k < 6; ++k)
-      stress[k] = f_alone * part[k] + f_rest * (sbar[k] - part[k]);
   }
 
 

@@ -14,11 +14,13 @@ displacement is 1.3 times the crack opening w_c = 5 G_F / f_t at which the
 MC2010 softening ends. Checked: the dissipated energy (bodies.csv) on each
 mesh against 0.95 G_F A (10 %, the issue's; the row's softening curve is
 scaled by 0.95), the spread across meshes (10 %), that the force has
-dropped to zero, and np = 2 against np = 1 on the middle mesh (same
+dropped to zero (its mean over the last 20 % of the run: the separated
+halves ring), and np = 2 against np = 1 on the middle mesh (same
 dissipated energy to 1e-9).
 """
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import (Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions,
+                        write_scene)
 import concrete_reference as ref
 
 args = arguments()
@@ -64,29 +66,7 @@ subsection Body bar
     set Strength factor = 0.95
   end
 end
-subsection Boundary condition sym_x
-  set Body = bar
-  set Boundary ids = 0
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = bar
-  set Boundary ids = 2
-  set Components = y
-end
-subsection Boundary condition sym_z
-  set Body = bar
-  set Boundary ids = 4
-  set Components = z
-end
-subsection Boundary condition pull
-  set Body = bar
-  set Boundary ids = 1
-  set Type = velocity
-  set Velocity = {v}, 0, 0
-  set Components = x
-end
-subsection Probe end
+{uniaxial_boundary_conditions("bar", v)}subsection Probe end
   set Point = {dx / 2}, {B / 2}, {B / 2}
 end
 """)
@@ -108,8 +88,9 @@ for n in (10, 20, 40):
     c.check(f"{n} x {n // 10} x {n // 10} mesh: dissipated energy (J) against 0.95 G_F A", W, expected,
             0.10, relative=True)
     peak = max(probe["stress_xx"])
-    c.check_below(f"{n} elements along: stress at the fixed end at the end / peak", abs(probe["stress_xx"][-1]) / peak,
-                  0.05)
+    tail = probe["stress_xx"][-40:]
+    c.check_below(f"{n} elements along: stress at the fixed end over the last 20 % of the run (mean) / peak",
+                  abs(sum(tail) / len(tail)) / peak, 0.05)
 spread = (max(energies.values()) - min(energies.values())) / min(energies.values())
 c.check_below("spread of the dissipated energy across the three meshes", spread, 0.10)
 W2, _ = run(20, np=2)

@@ -17,7 +17,8 @@ import bisect
 import math
 import os
 import subprocess
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import (Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions,
+                        write_scene)
 import concrete_reference as ref
 
 args = arguments()
@@ -70,29 +71,7 @@ subsection Body cube
 {ref.material_block(indent="  ")}
   set Integration = {integration}
 end
-subsection Boundary condition sym_x
-  set Body = cube
-  set Boundary ids = 0
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = cube
-  set Boundary ids = 2
-  set Components = y
-end
-subsection Boundary condition sym_z
-  set Body = cube
-  set Boundary ids = 4
-  set Components = z
-end
-subsection Boundary condition pull
-  set Body = cube
-  set Boundary ids = 1
-  set Type = velocity
-  set Velocity = {v}, 0, 0
-  set Components = x
-end
-subsection Probe corner
+{uniaxial_boundary_conditions("cube", v)}subsection Probe corner
   set Point = {L}, {L}, {L}
 end
 """)

@@ -15,7 +15,8 @@ effective plastic strain at the end against the driver's.
 import bisect
 import os
 import subprocess
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import (Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions,
+                        write_scene)
 
 args = arguments()
 c = Checker("single steel hexahedron through the solver against the material-point driver")
@@ -72,29 +73,7 @@ subsection Body cube
   set Formulation = {formulation}
   set Integration = {integration}
 end
-subsection Boundary condition sym_x
-  set Body = cube
-  set Boundary ids = 0
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = cube
-  set Boundary ids = 2
-  set Components = y
-end
-subsection Boundary condition sym_z
-  set Body = cube
-  set Boundary ids = 4
-  set Components = z
-end
-subsection Boundary condition pull
-  set Body = cube
-  set Boundary ids = 1
-  set Type = velocity
-  set Velocity = {rate * L}, 0, 0
-  set Components = x
-end
-subsection Probe corner
+{uniaxial_boundary_conditions("cube", rate * L)}subsection Probe corner
   set Point = {L}, {L}, {L}
 end
 """)

@@ -114,10 +114,7 @@ namespace anvil::MaterialModel
    *   d = (1 - b) E eps_in / (sigma + (1 - b) E eps_in),
    *   c  = sigma / (1 - d) = sigma + (1 - b) E eps_in,
    * and 1 - d = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
-   * s_c = 1 - w_c (1 - r) (output, erosion). The stress applies the r = 1
-   * factor to the tensile principal part of sigma_bar and the r = 0 factor
-   * to the compressive part: the same in uniaxial states, and no spurious
-   * tension across an open crack in mixed ones (see nominal_stress()).
+   * s_c = 1 - w_c (1 - r).
    *
    * Return mapping: the potential depends on invariants and D_0 is
    * isotropic, so the return keeps the principal directions of the trial
@@ -271,11 +268,8 @@ namespace anvil::MaterialModel
     void return_map(double *sbar, double *h, double cdif, double tdif,
                     double (&principal)[3]) const;
 
-    /** Nominal stress from the effective stress @p sbar (principal values
-        @p lam) and the damage variables: the tensile and compressive
-        principal parts are degraded separately. */
-    void nominal_stress(const double *sbar, const double (&lam)[3], double d_t, double d_c,
-                        double *stress) const;
+    /** The weight r = sum <s_i> / sum |s_i| of principal values @p s. */
+    static double tension_weight(const double (&s)[3]);
 
     /** sigma : C_0^-1 : sigma_bar / 2, the energy stored in the point. */
     double stored_energy(const double *sigma, const double *sbar) const;
