@@ -7,11 +7,13 @@
  * internal and hourglass forces, stable time step) and the central
  * difference update of all nodes. Prints nanoseconds per element-cycle for
  * one-point integration with viscous hourglass control and for full
- * integration, the solver state per element and the peak memory per element.
+ * integration, for plastic steel and cracking concrete, the solver state per
+ * element and the peak memory per element.
  *
  * Usage: element_throughput [n] [cycles]
  */
 #include <anvil/element/element_group.h>
+#include <anvil/material_model/concrete_damaged_plasticity.h>
 #include <anvil/material_model/elastic.h>
 #include <anvil/material_model/plastic_kinematic.h>
 
@@ -39,7 +41,8 @@ namespace
              const Element::HourglassType   hourglass = Element::HourglassType::viscous,
              const Formulation              formulation = Formulation::updated_lagrangian,
              const bool                     steel       = false,
-             const bool                     rate        = false)
+             const bool                     rate        = false,
+             const bool                     concrete    = false)
   {
     // Elastic, or the seed's Table 1 steel with a yield stress low enough
     // that the block flows plastically from the first cycles.
@@ -53,8 +56,17 @@ namespace
     law.C               = 40;
     law.p               = 5;
     plastic.set(7850., 2.06e11, 0.3, law, false);
+    // Concrete: the seed's column concrete (f'c = 45.4 MPa, MC2010 curves);
+    // the velocity field (strain rates ~10 1/s) passes f_t / E after about
+    // ten cycles, so most timed cycles run the return mappings.
+    MaterialModel::ConcreteDamagedPlasticity          concrete_model;
+    MaterialModel::ConcreteDamagedPlasticity::Parameters cp;
+    cp.curves = MaterialModel::ConcreteCurves::model_code_2010(45.4e6);
+    concrete_model.set(cp);
     const MaterialModel::Interface &material =
-      steel ? static_cast<const MaterialModel::Interface &>(plastic) : elastic;
+      concrete ? static_cast<const MaterialModel::Interface &>(concrete_model) :
+      steel    ? static_cast<const MaterialModel::Interface &>(plastic) :
+                 static_cast<const MaterialModel::Interface &>(elastic);
     Element::ElementGroup group(material, formulation, integration, hourglass, 0.1);
     const unsigned int    nn = n + 1;
     const double          h  = 1e-2;
@@ -130,6 +142,8 @@ int main(int argc, char **argv)
                            Formulation::updated_lagrangian, true, false);
   const Result pkr  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                            Formulation::updated_lagrangian, true, true);
+  const Result cdp  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+                           Formulation::updated_lagrangian, false, false, true);
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   const double peak = usage.ru_maxrss * 1024.;
@@ -145,6 +159,10 @@ int main(int argc, char **argv)
               "Cowper-Symonds rate effects: %.1f ns; steel / elastic: %.2f\n",
               pk.ns_per_element_cycle, pkr.ns_per_element_cycle,
               pk.ns_per_element_cycle / one.ns_per_element_cycle);
+  std::printf("one-point, concrete damaged plasticity (cracking): %.1f ns per element-cycle; "
+              "concrete / elastic: %.2f; state %.0f bytes per element\n",
+              cdp.ns_per_element_cycle, cdp.ns_per_element_cycle / one.ns_per_element_cycle,
+              cdp.state_bytes_per_element);
   std::printf("memory: %.0f bytes per element (one-point solver state incl. nodal vectors; full: %.0f)\n",
               one.state_bytes_per_element, full.state_bytes_per_element);
   std::printf("peak resident memory: %.0f bytes per element (process peak / elements, largest run)\n",

@@ -38,6 +38,56 @@ def mc2010_compression(fcm, eps):
     return fcm * (k * eta - eta ** 2) / (1 + (k - 2) * eta)
 
 
+def mc2010_elastic_limit(fcm):
+    """(eps, E): the strain where Eq. (5.1-26) reaches 0.4 f_cm, by bisection,
+    and the secant modulus E = 0.4 f_cm / eps there (Anvil's E)."""
+    lo, hi = 0.0, mc2010_constants(fcm)[1]
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if mc2010_compression(fcm, mid) < 0.4 * fcm else (lo, mid)
+    return lo, 0.4 * fcm / lo
+
+
+def pulled_bar(n, end_time, history_interval, velocity, extra="", length=0.1, width=0.01,
+               lateral=None):
+    """Scene text of a concrete bar (length x width x width, n elements along
+    and lateral = n // 10 across) pulled at its x+ end at 'velocity' with
+    symmetry planes on x-, y-, z-, a probe 'end' in the first element and
+    one element row just beyond mid-length weakened to strength 0.95.
+    'extra' goes into the material subsection."""
+    from anvil_test import uniaxial_boundary_conditions
+    dx = length / n
+    m = lateral if lateral else max(n // 10, 1)
+    return f"""
+# Concrete bar pulled at one end, {n} elements along.
+set Bodies = bar
+set Boundary conditions = sym_x, sym_y, sym_z, pull
+set Probes = end
+subsection Simulation
+  set End time = {end_time}
+  set History interval = {history_interval}
+  set Print wall times = false
+end
+subsection Body bar
+  subsection Mesh
+    set Source = box
+    set Lower corner = 0, 0, 0
+    set Upper corner = {length}, {width}, {width}
+    set Subdivisions = {n}, {m}, {m}
+  end
+{material_block(extra=extra, indent="  ")}
+  subsection Imperfection
+    set Lower corner = {0.5 * length + 0.1 * dx}, -1, -1
+    set Upper corner = {0.5 * length + 0.9 * dx}, 1, 1
+    set Strength factor = 0.95
+  end
+end
+{uniaxial_boundary_conditions("bar", velocity)}subsection Probe end
+  set Point = {dx / 2}, {width / 2}, {width / 2}
+end
+"""
+
+
 def mc2010_tensile_strength(fcm):
     fck = fcm / 1e6 - 8
     return 1e6 * (0.3 * fck ** (2 / 3) if fck <= 50 else 2.12 * math.log(1 + fcm / 10e6))

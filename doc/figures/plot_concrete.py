@@ -1,6 +1,7 @@
 """Plot the concrete damaged plasticity at a material point (f'c = 45.4 MPa,
 MC2010 curves): uniaxial compression with an unloading branch against
-MC2010 Eq. (5.1-26), tension for two crack-band lengths, and compression at
+MC2010 Eq. (5.1-26), tension for two crack-band lengths (and with the
+lateral strains held: the tension cut-off), and compression at
 four strain rates.
 
 Usage: python3 doc/figures/plot_concrete.py ANVIL OUTPUT.png
@@ -25,11 +26,11 @@ work = tempfile.mkdtemp()
 fc = 45.4e6
 
 
-def drive(name, path, rate=1e-5, h=0.05, extra="", inc=2e-6):
+def drive(name, path, rate=1e-5, h=0.05, extra="", inc=2e-6, mode="uniaxial stress"):
     prm = os.path.join(work, name + ".prm")
     with open(prm, "w") as f:
         f.write(f"set Output file = {name}.csv\n{ref.material_block(fc, extra)}"
-                f"subsection Loading\n  set Strain rate = {rate}\n  set Strain path = {path}\n"
+                f"subsection Loading\n  set Mode = {mode}\n  set Strain rate = {rate}\n  set Strain path = {path}\n"
                 f"  set Strain increment = {inc}\n  set Characteristic length = {h}\nend\n")
     subprocess.run([anvil, "--material-point", prm], cwd=work, check=True, capture_output=True)
     with open(os.path.join(work, name + ".csv")) as f:
@@ -51,6 +52,10 @@ G, ft = ref.mc2010_fracture_energy(fc), ref.mc2010_tensile_strength(fc)
 for h in (0.02, 0.1):
     e, s = drive(f"t{h}", f"{1.2 * 5 * G / ft / h}", h=h, inc=5 * G / ft / h / 4000)
     ax[1].plot([x * h * 1e3 for x in e], [y / 1e6 for y in s], label=f"h = {h * 1000:.0f} mm")
+e, s = drive("t_confined", f"{1.2 * 5 * G / ft / 0.02}", h=0.02, inc=5 * G / ft / 0.02 / 4000,
+             mode="uniaxial strain")
+ax[1].plot([x * 0.02 * 1e3 for x in e], [y / 1e6 for y in s], "--",
+           label="h = 20 mm, lateral strain held")
 ax[1].set(xlabel="h x strain (mm): crack opening", ylabel="tensile stress (MPa)",
           title=f"tension, crack band (G_F = {G:.0f} J/m^2)")
 ax[1].legend()

@@ -8,6 +8,7 @@
 #include <anvil/material_model/concrete_dif.h>
 #include <anvil/utilities/input_error.h>
 
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
@@ -399,11 +400,141 @@ namespace anvil::MaterialModel
 
 
   // @sect3{The return mapping}
+  //
+  // Two surfaces: Lubliner's F and the tension cut-off max sigma_bar_i <=
+  // c_t. Each return is exact on its own; when one leaves the other
+  // violated (rare: equibiaxial and triaxial tension) they alternate.
   void ConcreteDamagedPlasticity::return_map(double       *sbar,
                                              double       *h,
                                              const double  cdif,
                                              const double  tdif,
                                              double (&principal)[3]) const
+  {
+    for (unsigned int it = 0; it < 8; ++it)
+      {
+        const bool lubliner = lubliner_return(sbar, h, cdif, tdif);
+        if (!tension_cutoff(sbar, h, tdif) || (it > 0 && !lubliner))
+          break;
+      }
+    Kinematics::principal_values(sbar, principal);
+  }
+
+
+  // Rankine cut-off with associated flow: the plastic strain rate is
+  // sum dl_i n_i (x) n_i over the principal directions i above c_t, so the
+  // principal values drop by lambda S + 2 mu dl_i (S = sum dl_i) and the
+  // directions stay. kappa_t grows by S / m (m active directions; dl for
+  // one). Active set by elimination: at most three passes.
+  bool ConcreteDamagedPlasticity::tension_cutoff(double *sbar, double *h, const double tdif) const
+  {
+    const double len = h[i_length], f = h[i_strength_factor];
+    const double kt0 = h[i_kappa_t];
+    auto         cohesion = [&](const double kt) {
+      double d, c;
+      tension(kt, len, f, d, c);
+      return tdif * c;
+    };
+    double sp[3];
+    Kinematics::principal_values(sbar, sp);
+    const double tol = 1e-10 * par.curves.compressive_strength;
+    if (!(sp[0] > cohesion(kt0) + tol))
+      return false;
+
+    dealii::SymmetricTensor<2, 3> t;
+    t[0][0] = sbar[0];
+    t[1][1] = sbar[1];
+    t[2][2] = sbar[2];
+    t[0][1] = sbar[3];
+    t[1][2] = sbar[4];
+    t[0][2] = sbar[5];
+    const auto eig = dealii::eigenvectors(t, dealii::SymmetricTensorEigenvectorMethod::jacobi);
+    double     v[3] = {eig[0].first, eig[1].first, eig[2].first};
+
+    bool   active[3] = {true, false, false};
+    double dl[3]     = {0, 0, 0}, S = 0, c = cohesion(kt0);
+    for (unsigned int i = 1; i < 3; ++i)
+      active[i] = v[i] > c;
+    for (unsigned int pass = 0; pass < 4; ++pass)
+      {
+        unsigned int m   = 0;
+        double       sum = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          if (active[i])
+            {
+              ++m;
+              sum += v[i];
+            }
+        // g(S) = sum_A v_i - m c(kappa_t0 + S / m) - (2 mu + m lambda) S,
+        // g(0) > 0 and g(sum / (2 mu + m lambda)) <= 0 since c >= 0.
+        const double k = 2. * mu + m * lambda;
+        auto g = [&](const double s) { return sum - m * cohesion(kt0 + s / m) - k * s; };
+        double lo = 0, hi = std::max(sum, 0.) / k, glo = g(lo), ghi = g(hi);
+        S              = glo > 0 ? hi : 0.;
+        int side       = 0;
+        for (unsigned int it = 0; it < 200 && glo > 0 && ghi < 0; ++it)
+          {
+            S             = (lo * ghi - hi * glo) / (ghi - glo);
+            const double gs = g(S);
+            if (std::abs(gs) <= tol || hi - lo <= 1e-15 * hi)
+              break;
+            if (gs > 0)
+              {
+                lo  = S;
+                glo = gs;
+                if (side == 1)
+                  ghi *= 0.5;
+                side = 1;
+              }
+            else
+              {
+                hi  = S;
+                ghi = gs;
+                if (side == -1)
+                  glo *= 0.5;
+                side = -1;
+              }
+          }
+        c              = cohesion(kt0 + S / m);
+        bool changed   = false;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            dl[i] = active[i] ? (v[i] - lambda * S - c) / (2. * mu) : 0.;
+            if (active[i] && dl[i] < 0)
+              {
+                active[i] = false;
+                changed   = true;
+              }
+            else if (!active[i] && v[i] - lambda * S > c + tol)
+              {
+                active[i] = true;
+                changed   = true;
+              }
+          }
+        if (!changed)
+          {
+            h[i_kappa_t] = kt0 + S / m;
+            break;
+          }
+      }
+
+    for (unsigned int k = 0; k < 6; ++k)
+      sbar[k] = 0;
+    static constexpr unsigned int a[6] = {0, 1, 2, 0, 1, 0}, b[6] = {0, 1, 2, 1, 2, 2};
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        const double     vi = v[i] - lambda * S - 2. * mu * dl[i];
+        const auto      &n  = eig[i].second;
+        for (unsigned int k = 0; k < 6; ++k)
+          sbar[k] += vi * n[a[k]] * n[b[k]];
+      }
+    return true;
+  }
+
+
+  bool ConcreteDamagedPlasticity::lubliner_return(double      *sbar,
+                                                  double      *h,
+                                                  const double cdif,
+                                                  const double tdif) const
   {
     double sp[3];
     Kinematics::principal_values(sbar, sp);
@@ -432,10 +563,7 @@ namespace anvil::MaterialModel
     const double F0  = yield(q_tr, mean_tr, sp[0], kt0, kc0);
     const double tol = 1e-10 * par.curves.compressive_strength;
     if (!(F0 > tol))
-      {
-        std::copy(sp, sp + 3, principal);
-        return;
-      }
+      return false;
 
     // The state after plastic multiplier dl: q by Newton on
     // q (1 + 3 G dl / sqrt(a^2 + q^2)) = q_tr (from q_tr downwards: the
@@ -518,7 +646,7 @@ namespace anvil::MaterialModel
       sbar[k] = (k < 3 ? st.mean + scale * (sbar[k] - m_old) : scale * sbar[k]);
     h[i_kappa_t] = st.kt;
     h[i_kappa_c] = st.kc;
-    std::copy(st.s, st.s + 3, principal);
+    return true;
   }
 
 

@@ -58,12 +58,7 @@ end
 
 
 E_ci, eps_c1, eps_lim, k = ref.mc2010_constants(fc)
-# Strain where Eq. (5.1-26) reaches 0.4 f'c, by bisection.
-lo, hi = 0.0, eps_c1
-for _ in range(100):
-    mid = 0.5 * (lo + hi)
-    lo, hi = (mid, hi) if ref.mc2010_compression(fc, mid) < 0.4 * fc else (lo, mid)
-E = 0.4 * fc / lo
+lo, E = ref.mc2010_elastic_limit(fc)
 print(f"  MC2010: E_ci {E_ci/1e9:.2f} GPa, eps_c1 {eps_c1:.5f}, eps_c,lim {eps_lim:.5f}, "
       f"secant E at 0.4 f'c {E/1e9:.2f} GPa")
 
@@ -104,6 +99,52 @@ for h in (0.02, 0.1):
     c.check_below(f"tension h = {h*1000:.0f} mm: stress left at 1.2 w_c / f_t", abs(s[-1]) / f_t, 1e-3)
     c.check(f"tension h = {h*1000:.0f} mm: the model's dissipated energy density over the loop integral",
             d["dissipated_energy_density"][-1] / W, 1.0, 1e-3)
+
+# --- Tension with the lateral strains held (uniaxial strain): the effective
+# stress turns triaxial, where Lubliner's surface opens once beta < 0 (the
+# effective tensile cohesion outgrows the compressive one); the tension
+# cut-off holds sigma_bar_1 <= c_t. The crack strain's damaged part now
+# sees the confined modulus M = lambda + 2 mu, so per crack area the point
+# dissipates k G_F with k = b_t + (1 - b_t) E / M (0.91 for nu = 0.2).
+nu, b_t, h = 0.2, 0.1, 0.02
+M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+k_conf = b_t + (1 - b_t) * E / M
+w_c = 5 * G_F / f_t
+d = drive("tension_confined", f"{1.2 * w_c / h / k_conf + 2e-4}", mode="uniaxial strain", h=h,
+          inc=w_c / h / 4000)
+s, s_lat = d["stress_xx"], d["stress_yy"]
+i_peak = max(range(len(s)), key=lambda i: s[i])
+c.check("confined tension: peak stress", s[i_peak], f_t, 0.01, relative=True)
+c.check("confined tension: lateral over axial stress at the peak, nu / (1 - nu)",
+        s_lat[i_peak] / s[i_peak], nu / (1 - nu), 0.01, relative=True)
+c.check_below("confined tension: stress left at 1.2 w_c", abs(s[-1]) / f_t, 1e-3)
+c.check(f"confined tension: dissipated energy per crack area over k G_F (k = {k_conf:.4f})",
+        h * d["dissipated_energy_density"][-1] / (k_conf * G_F), 1.0, 0.01)
+
+# --- Tabulated curves: a linear tension softening to w = 0.2 mm and a
+# compression plateau. Checked: peaks, G_F = f_t w_0 / 2 from the table,
+# the softening stress at half the opening, the plateau.
+tab = ("    set Curves = tabulated\n    set Young's modulus = 30e9\n"
+       "    set Compression table = 0:20e6, 0.001:40e6, 0.003:40e6, 0.01:10e6\n"
+       "    set Tension table = 0:3e6, 0.0002:0\n")
+h = 0.02
+d = drive("tabulated_tension", f"{1.2 * 2e-4 / h}", h=h, inc=2e-4 / h / 4000, extra=tab)
+e, s = d["strain_xx"], d["stress_xx"]
+c.check("tabulated tension: peak stress (MPa)", max(s) / 1e6, 3.0, 0.01)
+c.check("tabulated tension: dissipated energy per crack area (J/m^2) against 3 MPa x 0.2 mm / 2",
+        h * d["dissipated_energy_density"][-1], 300.0, 0.01 * 300.0)
+# Halfway down the softening: crack opening w = h (eps - sigma / E) = 0.1 mm
+# (the plastic part b_t and the damaged part together make the inelastic
+# strain of the table's abscissa).
+i_half = min(range(len(e)), key=lambda i: abs(h * (e[i] - s[i] / 30e9) - 1e-4) if i > s.index(max(s))
+             else 1e9)
+c.check("tabulated tension: stress at w = 0.1 mm (MPa)", s[i_half] / 1e6, 1.5, 0.01 * 3.0)
+d = drive("tabulated_compression", "-0.006", extra=tab)
+e, s = [-x for x in d["strain_xx"]], [-x for x in d["stress_xx"]]
+i_plateau = min(range(len(e)), key=lambda i: abs(e[i] - 40e6 / 30e9 - 0.002))
+c.check("tabulated compression: peak (MPa)", max(s) / 1e6, 40.0, 0.01 * 40)
+c.check("tabulated compression: stress on the plateau at inelastic strain 0.002 (MPa)",
+        s[i_plateau] / 1e6, 40.0, 0.01 * 40)
 
 # --- Cyclic: crack, unload, compress, reload in tension.
 d = drive("cyclic", "0.0004, 0.0, -0.0003, 0.0, 0.0003", h=0.05, inc=1e-6)

@@ -124,6 +124,11 @@ namespace anvil::MaterialModel
    * implicitly; q(dlambda) of the hyperbola by Newton. No eigenvectors are
    * needed, and the apex and pure tension need no special case.
    *
+   * Tension cut-off: max sigma_bar_i <= c_t (Rankine, associated flow).
+   * The growing effective tensile cohesion makes beta negative and F
+   * non-convex, open in multiaxial tension; the cut-off closes it and
+   * touches F on the uniaxial tension meridian (doc/theory.md).
+   *
    * Strain-rate effects: the cohesions scale with CDIF and TDIF (seed
    * Eqs. (64)-(67), concrete_dif.h) of the largest principal strain rate
    * |D|_max, low-pass filtered with time constant tau.
@@ -267,6 +272,13 @@ namespace anvil::MaterialModel
         principal values of the result into @p principal. */
     void return_map(double *sbar, double *h, double cdif, double tdif,
                     double (&principal)[3]) const;
+
+    /** Return to Lubliner's surface alone; false if the trial was inside. */
+    bool lubliner_return(double *sbar, double *h, double cdif, double tdif) const;
+
+    /** Return to the tension cut-off max sigma_bar_i <= c_t alone; false
+        if the trial was inside. */
+    bool tension_cutoff(double *sbar, double *h, double tdif) const;
 
     /** The weight r = sum <s_i> / sum |s_i| of principal values @p s. */
     static double tension_weight(const double (&s)[3]);
