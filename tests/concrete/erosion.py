@@ -17,11 +17,15 @@ Checks:
   column (1 %, from 5 % of the erosion time on: before, the impulsive start
   of the pulled face dominates energies of micro-joules), and that column
   against the sum over erosion.csv;
+- the VTU fields read back: exactly those cells flagged 'eroded', with
+  max_principal_strain >= eps_f and tensile_damage > 0.95; no tensile
+  damage anywhere else;
 - np = 2 erodes the same elements, with the same energy history (1e-8).
 """
 import math
 import os
-from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, write_scene
+from anvil_test import (Checker, arguments, max_relative_difference, read_csv, read_vtu_cells, run_anvil,
+                        write_scene)
 import concrete_reference as ref
 
 args = arguments()
@@ -72,6 +76,19 @@ c.check("eroded energy column / sum over erosion.csv", energy["eroded"][-1], sum
 # measured against energies of 1e-9 J; judged from 5 % of t_e on.
 late = [b for t, b in zip(energy["time"], energy["balance_error"]) if t > 0.05 * t_e]
 c.check_below("largest energy balance error from 0.05 t_e on (with eroded energy)", max(late), 0.01)
+
+# The field output at the end: the 'eroded' flag, damage and the largest
+# principal strain per element, read back from the VTU file.
+cells = read_vtu_cells(os.path.join(args.work_dir, "output", "concrete_erosion_np1", "solution_0001.0.vtu"))
+eroded = [i for i, f in enumerate(cells["eroded"]) if f > 0.5]
+intact = [i for i in range(len(cells["eroded"])) if i not in eroded]
+c.check("VTU: cells flagged 'eroded'", len(eroded), 4, 0)
+c.check_below("VTU: largest tensile_damage of the intact cells (they never cracked)",
+              max(cells["tensile_damage"][i] for i in intact), 0.0)
+c.check_below("VTU: eps_f - smallest max_principal_strain of the eroded cells",
+              eps_f - min(cells["max_principal_strain"][i] for i in eroded), 1e-6)
+c.check_below("VTU: 0.95 - smallest tensile_damage of the eroded cells (cracks past w_1)",
+              0.95 - min(cells["tensile_damage"][i] for i in eroded), 0.0)
 
 energy2, erosion2, _ = results[2]
 c.check_below("np = 2 against np = 1: largest relative difference of energy.csv",
