@@ -20,6 +20,7 @@ Checks:
 - the VTU fields read back: exactly those cells flagged 'eroded', with
   max_principal_strain >= eps_f and tensile_damage > 0.95; no tensile
   damage anywhere else;
+- 'Erosion damage' = 0.99 instead: the same elements, with d >= 0.99;
 - np = 2 erodes the same elements, with the same energy history (1e-8).
 """
 import math
@@ -89,6 +90,24 @@ c.check_below("VTU: eps_f - smallest max_principal_strain of the eroded cells",
               eps_f - min(cells["max_principal_strain"][i] for i in eroded), 1e-6)
 c.check_below("VTU: 0.95 - smallest tensile_damage of the eroded cells (cracks past w_1)",
               0.95 - min(cells["tensile_damage"][i] for i in eroded), 0.0)
+
+# The other criterion: 'Erosion damage' = 0.99 instead of the strain.
+name = "concrete_erosion_damage"
+prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
+                  text=text.replace(f"    set Erosion principal strain = {eps_f}\n",
+                                    "    set Erosion damage = 0.99\n"))
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+if c.check_true("damage criterion: anvil exits 0", code == 0, err.strip()):
+    d = os.path.join(args.work_dir, "output", name)
+    erosion_d = read_csv(os.path.join(d, "erosion.csv"))
+    cells_d = read_vtu_cells(os.path.join(d, "solution_0001.0.vtu"))
+    eroded_d = [i for i, f in enumerate(cells_d["eroded"]) if f > 0.5]
+    c.check_true("damage criterion: the same 4 elements erode",
+                 sorted(erosion_d["element"]) == sorted(erosion["element"]), str(erosion_d["element"]))
+    c.check_below("damage criterion: 0.99 - smallest damage of the eroded cells (VTU, single precision)",
+                  0.99 - min(cells_d["damage"][i] for i in eroded_d), 1e-6)
+    c.check_true("damage criterion: erodes before the strain criterion",
+                 max(erosion_d["time"]) < t_e, f"{max(erosion_d['time']):.5g} s against {t_e:.5g} s")
 
 energy2, erosion2, _ = results[2]
 c.check_below("np = 2 against np = 1: largest relative difference of energy.csv",
