@@ -12,6 +12,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace anvil::MaterialModel
@@ -56,6 +57,29 @@ namespace anvil::MaterialModel
       if (!(y.front() > 0))
         throw InputError(where + "entry '" + entry + "': the first stress (the elastic "
                                  "limit) must be positive");
+    }
+
+    // Principal values (descending) and directions of a symmetric tensor
+    // in Voigt order xx, yy, zz, xy, yz, xz (Jacobi: accurate for close
+    // values; only points that crack or carry mixed signs need it).
+    std::array<std::pair<double, dealii::Tensor<1, 3>>, 3> principal_frame(const double *v)
+    {
+      dealii::SymmetricTensor<2, 3> t;
+      t[0][0] = v[0];
+      t[1][1] = v[1];
+      t[2][2] = v[2];
+      t[0][1] = v[3];
+      t[1][2] = v[4];
+      t[0][2] = v[5];
+      return dealii::eigenvectors(t, dealii::SymmetricTensorEigenvectorMethod::jacobi);
+    }
+
+    // out += value n (x) n, Voigt.
+    void add_projection(const double value, const dealii::Tensor<1, 3> &n, double *out)
+    {
+      static constexpr unsigned int a[6] = {0, 1, 2, 0, 1, 0}, b[6] = {0, 1, 2, 1, 2, 2};
+      for (unsigned int k = 0; k < 6; ++k)
+        out[k] += value * n[a[k]] * n[b[k]];
     }
   } // namespace
 
@@ -440,14 +464,7 @@ namespace anvil::MaterialModel
     if (!(sp[0] > cohesion(kt0) + tol))
       return false;
 
-    dealii::SymmetricTensor<2, 3> t;
-    t[0][0] = sbar[0];
-    t[1][1] = sbar[1];
-    t[2][2] = sbar[2];
-    t[0][1] = sbar[3];
-    t[1][2] = sbar[4];
-    t[0][2] = sbar[5];
-    const auto eig = dealii::eigenvectors(t, dealii::SymmetricTensorEigenvectorMethod::jacobi);
+    const auto eig  = principal_frame(sbar);
     double     v[3] = {eig[0].first, eig[1].first, eig[2].first};
 
     bool   active[3] = {true, false, false};
@@ -517,16 +534,9 @@ namespace anvil::MaterialModel
           }
       }
 
-    for (unsigned int k = 0; k < 6; ++k)
-      sbar[k] = 0;
-    static constexpr unsigned int a[6] = {0, 1, 2, 0, 1, 0}, b[6] = {0, 1, 2, 1, 2, 2};
+    std::fill(sbar, sbar + 6, 0.);
     for (unsigned int i = 0; i < 3; ++i)
-      {
-        const double     vi = v[i] - lambda * S - 2. * mu * dl[i];
-        const auto      &n  = eig[i].second;
-        for (unsigned int k = 0; k < 6; ++k)
-          sbar[k] += vi * n[a[k]] * n[b[k]];
-      }
+      add_projection(v[i] - lambda * S - 2. * mu * dl[i], eig[i].second, sbar);
     return true;
   }
 
@@ -719,14 +729,27 @@ namespace anvil::MaterialModel
         d_c = (h[i_compressive_damage] + eta * d_c) / (1. + eta);
         Kinematics::principal_values(sref, principal);
       }
-    const double r   = tension_weight(principal);
-    const double s_t = 1. - par.tensile_recovery * r;
-    const double s_c = 1. - par.compressive_recovery * (1. - r);
+    // 1 - d(r) = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
+    // s_c = 1 - w_c (1 - r).
+    auto intact = [&](const double r) {
+      return (1. - (1. - par.tensile_recovery * r) * d_c) *
+             (1. - (1. - par.compressive_recovery * (1. - r)) * d_t);
+    };
     h[i_tensile_damage]     = d_t;
     h[i_compressive_damage] = d_c;
-    h[i_damage]             = 1. - (1. - s_t * d_c) * (1. - s_c * d_t);
-    for (unsigned int k = 0; k < 6; ++k)
-      stress[k] = (1. - h[i_damage]) * sref[k];
+    h[i_damage]             = 1. - intact(tension_weight(principal));
+    if (principal[0] > 0 && principal[2] < 0 && (d_t > 0 || d_c > 0))
+      {
+        // Principal stresses of both signs: the combination per principal
+        // direction, r_i = 1 where sigma_bar_i > 0, else 0 (see the header).
+        const auto eig = principal_frame(sref);
+        std::fill(stress, stress + 6, 0.);
+        for (const auto &[value, n] : eig)
+          add_projection(intact(value > 0 ? 1. : 0.) * value, n, stress);
+      }
+    else
+      for (unsigned int k = 0; k < 6; ++k)
+        stress[k] = (1. - h[i_damage]) * sref[k];
 
     // Dissipation: mid-step stress power minus the change of stored energy.
     double work = 0;

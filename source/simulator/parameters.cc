@@ -120,6 +120,12 @@ namespace anvil
                         "The run stops when the total energy has grown by "
                         "more than this fraction of the largest E_kin, E_int, E_0 or |W_ext| so far "
                         "beyond the external work. Units: none.");
+      prm.declare_entry("Minimum time step ratio",
+                        "1e-4",
+                        Patterns::Double(0., 1.),
+                        "The run stops with an error when the stable time step "
+                        "falls below this fraction of the first step's (a collapsing "
+                        "element; LS-DYNA's DTMIN); 0: never. Units: none.");
       prm.declare_entry("Print wall times",
                         "true",
                         Patterns::Bool(),
@@ -237,6 +243,7 @@ namespace anvil
         output_interval  = prm.get_double("Output interval");
         history_interval = prm.get_double("History interval");
         energy_tolerance = prm.get_double("Energy balance tolerance");
+        min_dt_ratio     = prm.get_double("Minimum time step ratio");
         {
           const auto g = dealii::Utilities::split_string_list(prm.get("Gravity"));
           for (unsigned int d = 0; d < 3; ++d)

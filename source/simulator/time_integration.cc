@@ -366,12 +366,27 @@ namespace anvil
   //
   // A numerical failure stops the run with a message naming the time, the
   // step, the element and its position, after writing the last good state.
-  void Simulator::check_health(const double t, const unsigned int step)
+  //
+  // Also a stop: the internal energy below minus the tolerance for ten
+  // steps (stored plus dissipated energy of passive materials is >= 0: a
+  // material that returns more work than it took drives the motion), and
+  // the stable step below 'Minimum time step ratio' of the first one.
+  void Simulator::check_health(const double t, const unsigned int step, const double dt_next)
   {
     const long int inverted = Utilities::MPI::max(inverted_cell, mpi_communicator);
     std::string    problem;
     if (inverted >= 0)
       problem = "element " + std::to_string(inverted) + " is inverted (Jacobian <= 0)";
+    if (first_dt == 0)
+      first_dt = dt_next;
+    if (problem.empty() && min_dt_ratio > 0 && dt_next < min_dt_ratio * first_dt)
+      {
+        std::ostringstream s;
+        s << "the stable time step fell to " << dt_next << " s, " << dt_next / first_dt
+          << " of the first step's (limit " << min_dt_ratio
+          << ", 'Minimum time step ratio'): an element is collapsing";
+        problem = s.str();
+      }
     const double e_total = energies.total();
     // The largest energy level the run has reached: once energy has
     // flowed through the model, an absolute error small against it is no
@@ -390,6 +405,20 @@ namespace anvil
       ++growth_steps;
     else
       growth_steps = 0;
+    if (energies.internal < -energy_tolerance * scale)
+      ++negative_steps;
+    else
+      negative_steps = 0;
+    if (problem.empty() && negative_steps >= 10)
+      {
+        std::ostringstream s;
+        s << "the internal energy is negative, " << energies.internal << " J ("
+          << 100. * energies.internal / scale
+          << " % of the largest of E_kin, E_int, E_0, |W_ext| so far; limit "
+          << 100. * energy_tolerance
+          << " %, 'Energy balance tolerance'): a material returns more work than it took";
+        problem = s.str();
+      }
     const bool other_problem = !problem.empty();
     if (problem.empty() && growth_steps >= 10)
       {
@@ -597,7 +626,7 @@ namespace anvil
           energies.contact += r.energy;
 
         update_velocity(dt_previous, last ? 0. : current_dt);
-        check_health(time, step_number);
+        check_health(time, step_number, time_step_factor * dt_stable);
         if (time >= next_history - eps || last)
           {
             write_history(time, last ? 0. : current_dt);

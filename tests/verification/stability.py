@@ -11,6 +11,11 @@ be detected and stopped with the one-line message naming time, step, element
 and position and calling the step unstable (whether energy growth or the
 inverted element it causes is seen first), exit status 3, and the last good
 state on disk.
+
+A collapsing element is stopped too: the block thrown at 30 m/s (0.3 of the
+wave speed) into its fixed face, with 'Minimum time step ratio' = 0.8: its
+first elements flatten, the stable step falls below 0.8 of the first one,
+and the run stops with the same kind of line, naming the ratio.
 """
 import os
 from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
@@ -24,7 +29,7 @@ subsection Simulation
   set End time = 13
   set Print wall times = false
   set Time step safety factor = {factor}
-end
+{extra}end
 subsection Body block
   subsection Mesh
     set Upper corner = 1, 1, 1
@@ -37,7 +42,7 @@ subsection Body block
       set Poisson's ratio = 0.3
     end
   end
-  set Initial velocity = 1, 0.5, 0
+  set Initial velocity = {velocity}
   set Integration = {integration}
 end
 subsection Boundary condition wall
@@ -48,7 +53,7 @@ end
 for integration in ("one point", "full"):
     tag = integration.replace(" ", "_")
     prm = write_scene(os.path.join(args.work_dir, f"stable_{tag}.prm"),
-                      text=scene.format(factor=0.9, integration=integration))
+                      text=scene.format(factor=0.9, integration=integration, velocity="1, 0.5, 0", extra=""))
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     c.check_true(f"{integration}: factor 0.9 runs to the end", code == 0, err.strip())
     if code == 0:
@@ -57,7 +62,7 @@ for integration in ("one point", "full"):
         c.check_below(f"{integration}: largest energy balance error over the run", max(energy["balance_error"]), 0.05)
 
     prm = write_scene(os.path.join(args.work_dir, f"unstable_{tag}.prm"),
-                      text=scene.format(factor=1.2, integration=integration))
+                      text=scene.format(factor=1.2, integration=integration, velocity="1, 0.5, 0", extra=""))
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     lines = [l for l in err.splitlines() if l.strip()]
     c.check_true(f"{integration}: factor 1.2 stops with exit status 3", code == 3, f"exit {code}")
@@ -68,4 +73,19 @@ for integration in ("one point", "full"):
                  and all(k in message for k in ("numerical failure at t =", "step", "element", "near (", "unstable")))
     c.check_true(f"{integration}: last good state written",
                  os.path.exists(os.path.join(args.work_dir, f"output/unstable_{tag}/last_good.pvtu")))
+
+prm = write_scene(os.path.join(args.work_dir, "collapse.prm"),
+                  text=scene.format(factor=0.9, integration="one point", velocity="-30, 0, 0",
+                                    extra="  set Minimum time step ratio = 0.8\n"))
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+lines = [l for l in err.splitlines() if l.strip()]
+message = lines[-1] if lines else ""
+print("    message:", message)
+c.check_true("collapse: stops with exit status 3", code == 3, f"exit {code}")
+c.check_true("collapse: one error line naming the step ratio, time, element and position",
+             len([l for l in lines if l.startswith("anvil: error:")]) == 1
+             and all(k in message for k in ("numerical failure at t =", "Minimum time step ratio", "element",
+                                            "near (")))
+c.check_true("collapse: last good state written",
+             os.path.exists(os.path.join(args.work_dir, "output/collapse/last_good.pvtu")))
 c.finish()

@@ -114,7 +114,11 @@ namespace anvil::MaterialModel
    *   d = (1 - b) E eps_in / (sigma + (1 - b) E eps_in),
    *   c  = sigma / (1 - d) = sigma + (1 - b) E eps_in,
    * and 1 - d = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
-   * s_c = 1 - w_c (1 - r).
+   * s_c = 1 - w_c (1 - r), sigma = (1 - d) sigma_bar where the principal
+   * effective stresses share a sign. Where they do not, the combination
+   * acts per principal direction with r_i = 1 (sigma_bar_i > 0) or 0: with
+   * ABAQUS's r an open crack under a compression across it would carry a
+   * tension near that compression (doc/theory.md).
    *
    * Return mapping: the potential depends on invariants and D_0 is
    * isotropic, so the return keeps the principal directions of the trial

@@ -132,7 +132,7 @@ namespace anvil
                           std::vector<double>              &info) const;
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
-    void   check_health(double time, unsigned int step);
+    void   check_health(double time, unsigned int step, double dt_next);
 
     // Output (source/simulator/output.cc)
     /** Histories at time @p time, between the velocity and the position
@@ -158,6 +158,7 @@ namespace anvil
     double      output_interval;
     double      history_interval;
     double      energy_tolerance;
+    double      min_dt_ratio;
     /** Gravitational acceleration of the scene (body force rho g). */
     dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
@@ -228,8 +229,12 @@ namespace anvil
     unsigned int step_number    = 0;
     double       time           = 0;
     long int     inverted_cell  = -1;
-    /** Consecutive steps with the energy above the tolerance. */
+    /** Consecutive steps with the energy above the tolerance, and with the
+        internal energy below minus the tolerance. */
     unsigned int growth_steps   = 0;
+    unsigned int negative_steps = 0;
+    /** The first step's stable step (for 'Minimum time step ratio'). */
+    double       first_dt       = 0;
 
     /** Eroded elements so far (scene-wide), and the rows of erosion.csv
         not yet written. */
