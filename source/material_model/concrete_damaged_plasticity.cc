@@ -772,26 +772,6 @@ namespace anvil::MaterialModel
   }
 
 
-  // @sect3{Total Lagrangian}
-  void ConcreteDamagedPlasticity::compute_pk2_stress(const double *F,
-                                                     const double *E,
-                                                     double       *S,
-                                                     double       *history) const
-  {
-    update_pk2_stress(F, E, 0., S, history);
-  }
-
-
-  void ConcreteDamagedPlasticity::update_pk2_stress(const double *F,
-                                                    const double *,
-                                                    const double dt,
-                                                    double      *S,
-                                                    double      *h) const
-  {
-    update_pk2_by_rate_form(F, dt, S, h, n_ul_history);
-  }
-
-
   ANVIL_REGISTER_MATERIAL_MODEL(
     ConcreteDamagedPlasticity,
     "concrete damaged plasticity",

@@ -328,26 +328,6 @@ namespace anvil::MaterialModel
   }
 
 
-  // @sect3{Total Lagrangian: the same update on the reference mesh}
-  void PlasticKinematic::compute_pk2_stress(const double *F,
-                                            const double *E,
-                                            double       *S,
-                                            double       *history) const
-  {
-    update_pk2_stress(F, E, 0., S, history);
-  }
-
-
-  void PlasticKinematic::update_pk2_stress(const double *F,
-                                            const double *,
-                                            const double dt,
-                                            double      *S,
-                                            double      *h) const
-  {
-    update_pk2_by_rate_form(F, dt, S, h, 9);
-  }
-
-
   // @sect3{The uniaxial form}
   //
   // History: back stress (axial), effective plastic strain, plastic work

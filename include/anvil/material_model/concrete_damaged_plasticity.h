@@ -8,7 +8,7 @@
  */
 #pragma once
 
-#include <anvil/material_model/elastic.h>
+#include <anvil/material_model/rate_form_elastic.h>
 
 #include <string>
 #include <vector>
@@ -143,7 +143,7 @@ namespace anvil::MaterialModel
    * History per point: see the indices below; total Lagrangian adds the
    * previous F - I (9).
    */
-  class ConcreteDamagedPlasticity : public Elastic
+  class ConcreteDamagedPlasticity : public RateFormElastic
   {
   public:
     static void declare_parameters(dealii::ParameterHandler &prm);
@@ -197,9 +197,9 @@ namespace anvil::MaterialModel
     static constexpr unsigned int i_rate_started       = 30;
     static constexpr unsigned int n_ul_history         = 31;
 
-    unsigned int n_history(const Formulation f) const override
+    unsigned int n_updated_lagrangian_history() const override
     {
-      return f == Formulation::total_lagrangian ? n_ul_history + 9 : n_ul_history;
+      return n_ul_history;
     }
     std::vector<std::string> history_names() const override;
     int dissipation_index() const override
@@ -242,17 +242,6 @@ namespace anvil::MaterialModel
     {
       Interface::update_cauchy_stress_batch(D, dt, stress, history);
     }
-
-    void compute_pk2_stress(const double *F,
-                            const double *E,
-                            double       *S,
-                            double       *history) const override;
-
-    void update_pk2_stress(const double *F,
-                           const double *E,
-                           double        dt,
-                           double       *S,
-                           double       *history) const override;
 
     /** Static tensile damage and effective cohesion at hardening variable
         @p kappa_t, characteristic length @p h and strength factor @p f. */

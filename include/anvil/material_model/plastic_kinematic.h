@@ -6,7 +6,7 @@
  */
 #pragma once
 
-#include <anvil/material_model/elastic.h>
+#include <anvil/material_model/rate_form_elastic.h>
 
 namespace anvil::MaterialModel
 {
@@ -98,7 +98,7 @@ namespace anvil::MaterialModel
    * and Young's modulus) are the Elastic model's; every stress update is
    * overridden here.
    */
-  class PlasticKinematic : public Elastic
+  class PlasticKinematic : public RateFormElastic
   {
   public:
     static void declare_parameters(dealii::ParameterHandler &prm);
@@ -108,9 +108,9 @@ namespace anvil::MaterialModel
     void set(double density, double youngs_modulus, double poissons_ratio,
              const PlasticKinematicLaw &law, bool erosion);
 
-    unsigned int n_history(const Formulation f) const override
+    unsigned int n_updated_lagrangian_history() const override
     {
-      return f == Formulation::total_lagrangian ? 18 : 9;
+      return 9;
     }
     std::vector<std::string> history_names() const override
     {
@@ -158,17 +158,6 @@ namespace anvil::MaterialModel
                                     double dt,
                                     double (&stress)[6][batch_size],
                                     double *const (&history)[batch_size]) const override;
-
-    void compute_pk2_stress(const double *F,
-                            const double *E,
-                            double       *S,
-                            double       *history) const override;
-
-    void update_pk2_stress(const double *F,
-                           const double *E,
-                           double        dt,
-                           double       *S,
-                           double       *history) const override;
 
     double update_uniaxial_stress(double  strain_increment,
                                   double  dt,
