@@ -78,6 +78,24 @@ def run_anvil(anvil, prm, np=1, cwd=None, extra_args=()):
     return r.returncode, r.stdout, r.stderr
 
 
+def run_material_point(checker, args, name, material, **loading):
+    """Drive one material point with 'anvil --material-point': 'material'
+    is the driver file's 'subsection Material' text, 'loading' the entries
+    of its 'subsection Loading' (keyword with '_' for ' ', e.g.
+    Strain_rate=1.0). Writes NAME.prm, returns the columns of NAME.csv;
+    a failed run is a failed check and ends the test."""
+    prm = os.path.join(args.work_dir, name + ".prm")
+    entries = "".join(f"  set {k.replace('_', ' ')} = {v}\n" for k, v in loading.items())
+    with open(prm, "w") as f:
+        f.write(f"set Output file = {name}.csv\nset Overwrite existing output = true\n"
+                f"{material}\nsubsection Loading\n{entries}end\n")
+    r = subprocess.run([args.anvil, "--material-point", prm], cwd=args.work_dir,
+                       capture_output=True, text=True)
+    if not checker.check_true(f"{name}: driver runs", r.returncode == 0, r.stderr.strip()):
+        checker.finish()
+    return read_csv(os.path.join(args.work_dir, name + ".csv"))
+
+
 def write_scene(path, include=None, text=""):
     """Write a scene file; 'include' pulls in a real scene from prm/ whose
     entries 'text' then overrides."""

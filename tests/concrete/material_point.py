@@ -22,9 +22,7 @@
   (DIF continuity at 30 1/s and 1 1/s is tests/unit/concrete_dif.)
 """
 import math
-import os
-import subprocess
-from anvil_test import Checker, arguments, read_csv
+from anvil_test import Checker, arguments, run_material_point
 import concrete_reference as ref
 
 args = arguments()
@@ -34,27 +32,9 @@ fc = 45.4e6
 
 def drive(name, path, mode="uniaxial stress", rate=1e-5, inc=2e-6, h=0.05, extra="",
           lateral=0.0, formulation="updated Lagrangian"):
-    prm = os.path.join(args.work_dir, name + ".prm")
-    with open(prm, "w") as f:
-        f.write(f"""set Output file = {name}.csv
-set Overwrite existing output = true
-{ref.material_block(fc, extra)}
-subsection Loading
-  set Mode = {mode}
-  set Formulation = {formulation}
-  set Strain rate = {rate}
-  set Strain path = {path}
-  set Strain increment = {inc}
-  set Characteristic length = {h}
-  set Lateral stress = {lateral}
-end
-""")
-    r = subprocess.run([args.anvil, "--material-point", prm], cwd=args.work_dir,
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        c.check_true(f"{name}: driver runs", False, r.stderr.strip())
-        c.finish()
-    return read_csv(os.path.join(args.work_dir, name + ".csv"))
+    return run_material_point(c, args, name, ref.material_block(fc, extra), Mode=mode,
+                              Formulation=formulation, Strain_rate=rate, Strain_path=path,
+                              Strain_increment=inc, Characteristic_length=h, Lateral_stress=lateral)
 
 
 E_ci, eps_c1, eps_lim, k = ref.mc2010_constants(fc)

@@ -16,8 +16,7 @@ driver's density times the volume (1 %).
 import bisect
 import math
 import os
-import subprocess
-from anvil_test import (Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions,
+from anvil_test import (Checker, arguments, read_csv, run_anvil, run_material_point, uniaxial_boundary_conditions,
                         write_scene)
 import concrete_reference as ref
 
@@ -30,22 +29,9 @@ paths = {"compression": -0.005, "tension": 1.1 * 5 * G_F / f_t / L}
 
 for load, target in paths.items():
     rate = rates[load]
-    r = subprocess.run([args.anvil, "--material-point", write_scene(
-        os.path.join(args.work_dir, f"driver_{load}.prm"), text=f"""
-set Output file = driver_{load}.csv
-set Overwrite existing output = true
-{ref.material_block()}
-subsection Loading
-  set Mode = uniaxial stress
-  set Strain rate = {rate}
-  set Strain path = {target}
-  set Strain increment = 2e-6
-  set Characteristic length = {L}
-end
-""")], cwd=args.work_dir, capture_output=True, text=True)
-    if not c.check_true(f"{load}: driver runs", r.returncode == 0, r.stderr.strip()):
-        c.finish()
-    drv = read_csv(os.path.join(args.work_dir, f"driver_{load}.csv"))
+    drv = run_material_point(c, args, f"driver_{load}", ref.material_block(), Mode="uniaxial stress",
+                             Strain_rate=rate, Strain_path=target, Strain_increment=2e-6,
+                             Characteristic_length=L)
     peak = max(abs(s) for s in drv["stress_xx"])
     end_time = abs(math.exp(target) - 1) / rate
     v = math.copysign(rate * L, target)

@@ -17,9 +17,7 @@ driven by 'anvil --material-point', against closed forms.
 - Plastic dissipation over a closed cycle (0.02 -> -0.02 -> 0.02, beta = 0)
   equals the loop area  oint sigma d eps within 1 %.
 """
-import os
-from anvil_test import Checker, arguments, read_csv
-import subprocess
+from anvil_test import Checker, arguments, run_material_point
 
 args = arguments()
 c = Checker("plastic-kinematic steel at a material point")
@@ -30,33 +28,16 @@ Ep = E * Et / (E - Et)
 
 def drive(name, mode="uniaxial stress", rate=1.0, path="0.05", inc="1e-4",
           formulation="updated Lagrangian", rate_effects=True, beta=0.0):
-    prm = os.path.join(args.work_dir, name + ".prm")
-    with open(prm, "w") as f:
-        f.write(f"""set Output file = {name}.csv
-set Overwrite existing output = true
-subsection Material
+    material = f"""subsection Material
   set Model = plastic kinematic
   subsection plastic kinematic
     set Preset = Table 1 steel
     set Hardening parameter beta = {beta}
     set Strain rate effects = {'true' if rate_effects else 'false'}
   end
-end
-subsection Loading
-  set Mode = {mode}
-  set Formulation = {formulation}
-  set Strain rate = {rate}
-  set Strain path = {path}
-  set Strain increment = {inc}
-end
-""")
-    r = subprocess.run([args.anvil, "--material-point", prm], cwd=args.work_dir,
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        print(r.stdout, r.stderr)
-        c.check_true(f"driver run {name}", False, r.stderr.strip())
-        c.finish()
-    return read_csv(os.path.join(args.work_dir, name + ".csv"))
+end"""
+    return run_material_point(c, args, name, material, Mode=mode, Formulation=formulation,
+                              Strain_rate=rate, Strain_path=path, Strain_increment=inc)
 
 
 def closed_form(eps, rate, beta, rate_effects=True):

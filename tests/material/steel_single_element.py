@@ -14,8 +14,7 @@ effective plastic strain at the end against the driver's.
 """
 import bisect
 import os
-import subprocess
-from anvil_test import (Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions,
+from anvil_test import (Checker, arguments, read_csv, run_anvil, run_material_point, uniaxial_boundary_conditions,
                         write_scene)
 
 args = arguments()
@@ -30,21 +29,8 @@ material = """
   end
 """
 L, rate, target = 0.01, 1.0, 0.05
-driver = write_scene(os.path.join(args.work_dir, "driver.prm"), text=f"""
-set Output file = driver.csv
-set Overwrite existing output = true
-{material.replace('  subsection', 'subsection', 1).replace('  end', 'end')}
-subsection Loading
-  set Mode = uniaxial stress
-  set Strain rate = {rate}
-  set Strain path = {target}
-  set Strain increment = 1e-5
-end
-""")
-r = subprocess.run([args.anvil, "--material-point", driver], cwd=args.work_dir, capture_output=True, text=True)
-if not c.check_true("driver runs", r.returncode == 0, r.stderr.strip()):
-    c.finish()
-ref = read_csv(os.path.join(args.work_dir, "driver.csv"))
+ref = run_material_point(c, args, "driver", material.replace('  subsection', 'subsection', 1).replace('  end', 'end'),
+                         Mode="uniaxial stress", Strain_rate=rate, Strain_path=target, Strain_increment=1e-5)
 
 import math
 end_time = (math.exp(target) - 1) * L / (rate * L)
