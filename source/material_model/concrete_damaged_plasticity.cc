@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 namespace anvil::MaterialModel
 {
@@ -436,13 +437,13 @@ namespace anvil::MaterialModel
                                              const double  tdif,
                                              double (&principal)[3]) const
   {
+    Kinematics::principal_values(sbar, principal);
     for (unsigned int it = 0; it < 8; ++it)
       {
-        const bool lubliner = lubliner_return(sbar, h, cdif, tdif);
-        if (!tension_cutoff(sbar, h, tdif) || (it > 0 && !lubliner))
+        const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
+        if (!tension_cutoff(sbar, h, tdif, principal) || (it > 0 && !lubliner))
           break;
       }
-    Kinematics::principal_values(sbar, principal);
   }
 
 
@@ -451,7 +452,10 @@ namespace anvil::MaterialModel
   // principal values drop by lambda S + 2 mu dl_i (S = sum dl_i) and the
   // directions stay. kappa_t grows by S / m (m active directions; dl for
   // one). Active set by elimination: at most three passes.
-  bool ConcreteDamagedPlasticity::tension_cutoff(double *sbar, double *h, const double tdif) const
+  bool ConcreteDamagedPlasticity::tension_cutoff(double      *sbar,
+                                                 double      *h,
+                                                 const double tdif,
+                                                 double (&sp)[3]) const
   {
     const double len = h[i_length], f = h[i_strength_factor];
     const double kt0 = h[i_kappa_t];
@@ -460,8 +464,6 @@ namespace anvil::MaterialModel
       tension(kt, len, f, d, c);
       return tdif * c;
     };
-    double sp[3];
-    Kinematics::principal_values(sbar, sp);
     const double tol = 1e-10 * par.curves.compressive_strength;
     if (!(sp[0] > cohesion(kt0) + tol))
       return false;
@@ -538,7 +540,11 @@ namespace anvil::MaterialModel
 
     std::fill(sbar, sbar + 6, 0.);
     for (unsigned int i = 0; i < 3; ++i)
-      add_projection(v[i] - lambda * S - 2. * mu * dl[i], eig[i].second, sbar);
+      {
+        sp[i] = v[i] - lambda * S - 2. * mu * dl[i];
+        add_projection(sp[i], eig[i].second, sbar);
+      }
+    std::sort(sp, sp + 3, std::greater<double>());
     return true;
   }
 
@@ -546,10 +552,9 @@ namespace anvil::MaterialModel
   bool ConcreteDamagedPlasticity::lubliner_return(double      *sbar,
                                                   double      *h,
                                                   const double cdif,
-                                                  const double tdif) const
+                                                  const double tdif,
+                                                  double (&sp)[3]) const
   {
-    double sp[3];
-    Kinematics::principal_values(sbar, sp);
     const double mean_tr = (sp[0] + sp[1] + sp[2]) / 3.;
     const double s_tr[3] = {sp[0] - mean_tr, sp[1] - mean_tr, sp[2] - mean_tr};
     const double q_tr =
@@ -658,6 +663,7 @@ namespace anvil::MaterialModel
       sbar[k] = (k < 3 ? st.mean + scale * (sbar[k] - m_old) : scale * sbar[k]);
     h[i_kappa_t] = st.kt;
     h[i_kappa_c] = st.kc;
+    std::copy(st.s, st.s + 3, sp);
     return true;
   }
 

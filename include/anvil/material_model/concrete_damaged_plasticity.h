@@ -266,12 +266,14 @@ namespace anvil::MaterialModel
     void return_map(double *sbar, double *h, double cdif, double tdif,
                     double (&principal)[3]) const;
 
-    /** Return to Lubliner's surface alone; false if the trial was inside. */
-    bool lubliner_return(double *sbar, double *h, double cdif, double tdif) const;
+    /** Return to Lubliner's surface alone; false if the trial was inside.
+        @p principal: the principal values of @p sbar, on entry and exit. */
+    bool lubliner_return(double *sbar, double *h, double cdif, double tdif,
+                         double (&principal)[3]) const;
 
     /** Return to the tension cut-off max sigma_bar_i <= c_t alone; false
-        if the trial was inside. */
-    bool tension_cutoff(double *sbar, double *h, double tdif) const;
+        if the trial was inside. @p principal as above. */
+    bool tension_cutoff(double *sbar, double *h, double tdif, double (&principal)[3]) const;
 
     /** The weight r = sum <s_i> / sum |s_i| of principal values @p s. */
     static double tension_weight(const double (&s)[3]);
