@@ -471,14 +471,15 @@ namespace anvil::MaterialModel
     const auto eig  = principal_frame(sbar);
     double     v[3] = {eig[0].first, eig[1].first, eig[2].first};
 
-    bool   active[3] = {true, false, false};
-    double dl[3]     = {0, 0, 0}, S = 0, c = cohesion(kt0);
+    bool         active[3] = {true, false, false};
+    double       dl[3]     = {0, 0, 0}, S = 0, c = cohesion(kt0);
+    unsigned int m         = 1;
     for (unsigned int i = 1; i < 3; ++i)
       active[i] = v[i] > c;
     for (unsigned int pass = 0; pass < 4; ++pass)
       {
-        unsigned int m   = 0;
-        double       sum = 0;
+        m          = 0;
+        double sum = 0;
         for (unsigned int i = 0; i < 3; ++i)
           if (active[i])
             {
@@ -523,6 +524,7 @@ namespace anvil::MaterialModel
             if (active[i] && dl[i] < 0)
               {
                 active[i] = false;
+                dl[i]     = 0;
                 changed   = true;
               }
             else if (!active[i] && v[i] - lambda * S > c + tol)
@@ -532,11 +534,9 @@ namespace anvil::MaterialModel
               }
           }
         if (!changed)
-          {
-            h[i_kappa_t] = kt0 + S / m;
-            break;
-          }
+          break;
       }
+    h[i_kappa_t] = kt0 + S / m;
 
     std::fill(sbar, sbar + 6, 0.);
     for (unsigned int i = 0; i < 3; ++i)
