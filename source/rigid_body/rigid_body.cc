@@ -210,6 +210,7 @@ namespace anvil::RigidBody
     const double       dt_avg     = 0.5 * (dt_previous + dt);
     const Tensor<1, 3> v_old      = velocity;
     const Tensor<1, 3> w_old      = angular_velocity;
+    const Tensor<1, 3> L_old      = angular_momentum;
     const Tensor<2, 3> I          = rotation * reference_inertia * transpose(rotation);
     if (free)
       {
@@ -225,7 +226,22 @@ namespace anvil::RigidBody
           }
         angular_momentum = I * angular_velocity;
       }
-    kinetic_energy    = 0.5 * (mass * (v_old * velocity) + w_old * (I * angular_velocity));
+    // The total force and torque that moved the body, M dV / dt_avg and
+    // dL / dt_avg; what the applied ones do not explain is the reaction.
+    Tensor<1, 3> f_total, t_total;
+    if (dt_avg > 0)
+      {
+        f_total = mass * (velocity - v_old) / dt_avg;
+        t_total = (angular_momentum - L_old) / dt_avg;
+      }
+    const Tensor<1, 3> r_force  = f_total - force;
+    const Tensor<1, 3> r_torque = t_total - torque;
+    last_reaction_work = 0.5 * dt_previous *
+                         ((reaction_force + r_force) * v_old + (reaction_torque + r_torque) * w_old);
+    reaction_force  = r_force;
+    reaction_torque = r_torque;
+    kinetic_energy  = 0.5 * (v_old * (mass * v_old + dt_previous * f_total) +
+                            w_old * (I * w_old + dt_previous * t_total));
     previous_centre   = centre;
     previous_rotation = rotation;
     if (dt > 0)

@@ -78,12 +78,13 @@ namespace anvil
         }
     if (!root)
       return;
+    record_probe_summary(probe_values, n_values);
 
     if (!energy_file.is_open())
       {
         energy_file.open(output_directory + "/energy.csv");
         energy_file << "time,kinetic,internal,hourglass,contact,friction,eroded,bond,"
-                       "external_work,total,balance_error\n";
+                       "step_change,external_work,total,balance_error\n";
         momentum_file.open(output_directory + "/momentum.csv");
         momentum_file << "time";
         for (const auto &b : bodies)
@@ -106,7 +107,8 @@ namespace anvil
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
                 << energies.internal << ',' << energies.hourglass << ','
                 << energies.contact << ',' << energies.friction << ','
-                << energies.eroded << ',' << energies.bond << ',' << energies.external_work << ',' << energies.total() << ','
+                << energies.eroded << ',' << energies.bond << ',' << energies.step_change << ','
+                << energies.external_work << ',' << energies.total() << ','
                 << balance_error << '\n';
     momentum_file << std::setprecision(15) << t;
     double total[3] = {0, 0, 0};

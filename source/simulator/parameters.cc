@@ -11,9 +11,14 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
 
+#include <cmath>
+
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <set>
 
 namespace anvil
@@ -55,6 +60,88 @@ namespace anvil
                         "Names of reinforcement layouts; each has a subsection "
                         "'Rebar NAME' and writes rebar_NAME.csv.");
     }
+
+    // @sect3{Include files}
+    //
+    // deal.II opens an 'include' relative to the working directory; a scene
+    // that includes another in its own folder (the variants in prm/) must
+    // run from anywhere. So the scene is expanded here: each 'include FILE'
+    // is resolved relative to the file that names it, a file that includes
+    // itself (directly or through others) is an input error, and the origin
+    // of every expanded line is kept for the messages.
+    struct ExpandedScene
+    {
+      std::string                                text;
+      std::vector<std::pair<std::string, int>>  origin;
+    };
+
+    void expand(const std::filesystem::path &file,
+                std::vector<std::string>    &stack,
+                ExpandedScene               &scene)
+    {
+      const std::string key = std::filesystem::weakly_canonical(file).string();
+      if (std::find(stack.begin(), stack.end(), key) != stack.end())
+        throw InputError(file.string() + ": includes itself (through " +
+                         std::to_string(stack.size()) + " file(s)); an include must not form a cycle");
+      if (stack.size() > 32)
+        throw InputError(file.string() + ": includes nested more than 32 deep");
+      std::ifstream in(file);
+      if (!in)
+        throw InputError(file.string() + ": the file cannot be opened");
+      stack.push_back(key);
+      std::string line;
+      int         number = 0;
+      while (std::getline(in, line))
+        {
+          ++number;
+          const auto first = line.find_first_not_of(" \t");
+          if (first != std::string::npos &&
+              (line.compare(first, 8, "include ") == 0 || line.compare(first, 8, "INCLUDE ") == 0))
+            {
+              std::string name = line.substr(first + 8);
+              name.erase(0, name.find_first_not_of(" \t"));
+              const auto hash = name.find('#');
+              if (hash != std::string::npos)
+                name.erase(hash);
+              name.erase(name.find_last_not_of(" \t\r") + 1);
+              std::filesystem::path target(name);
+              if (target.is_relative())
+                target = file.parent_path() / target;
+              if (!std::filesystem::exists(target))
+                throw InputError(file.string() + ": line " + std::to_string(number) + ": include file '" +
+                                 name.substr(0, 200) + "' does not exist (relative to " +
+                                 (file.parent_path().empty() ? std::string(".") :
+                                                               file.parent_path().string()) +
+                                 ")");
+              expand(target, stack, scene);
+              continue;
+            }
+          scene.text += line;
+          scene.text += '\n';
+          scene.origin.emplace_back(file.string(), number);
+        }
+      stack.pop_back();
+    }
+
+    // deal.II's messages name 'Line <N> of file <F>' of the expanded text:
+    // name the real file and line instead.
+    std::string locate(std::string msg, const ExpandedScene &scene)
+    {
+      const std::string tag = "Line <";
+      const auto        at  = msg.find(tag);
+      if (at == std::string::npos)
+        return msg;
+      const auto close = msg.find('>', at);
+      const auto of    = msg.find("of file <", close);
+      const auto end   = of == std::string::npos ? std::string::npos : msg.find('>', of + 9);
+      if (close == std::string::npos || end == std::string::npos)
+        return msg;
+      const int n = std::atoi(msg.substr(at + tag.size(), close - at - tag.size()).c_str());
+      if (n < 1 || n > int(scene.origin.size()))
+        return msg;
+      const auto &[file, line] = scene.origin[n - 1];
+      return msg.substr(0, at) + "line " + std::to_string(line) + " of " + file + msg.substr(end + 1);
+    }
   } // namespace
 
 
@@ -93,6 +180,26 @@ namespace anvil
                         Patterns::Double(0.),
                         "Factor on the stable time step min_e L_e / c_e. "
                         "Units: none.");
+      prm.declare_entry("Maximum time step",
+                        "0",
+                        Patterns::Anything(),
+                        "Upper bound of the time step, a function of the time t "
+                        "(a constant such as 1e-7, or an expression such as "
+                        "'if(t < 0.01, 1e-7, 1e-6)'; LS-DYNA's LCTM curve); where "
+                        "it is 0 or negative the stable step alone sets the step. "
+                        "Units: s.");
+      prm.declare_entry("End kinetic energy fraction",
+                        "0",
+                        Patterns::Double(0., 1.),
+                        "End the run before 'End time' once no contact pair "
+                        "carries force and the kinetic energy of the deformable "
+                        "bodies has stayed below this fraction of the initial "
+                        "energy for 'End quiet time' (an impact that is over); "
+                        "0: off. Units: none.");
+      prm.declare_entry("End quiet time",
+                        "0.01",
+                        Patterns::Double(0.),
+                        "How long the end criterion must hold. Units: s.");
       prm.declare_entry("Maximum number of steps",
                         "100000000",
                         Patterns::Integer(1),
@@ -190,14 +297,20 @@ namespace anvil
       throw InputError(parameter_file + ": the scene file does not exist");
     scene_file = parameter_file;
 
+    ExpandedScene expanded;
+    {
+      std::vector<std::string> stack;
+      expand(parameter_file, stack, expanded);
+    }
     auto parse = [&](dealii::ParameterHandler &prm, const bool skip) {
       try
         {
-          prm.parse_input(parameter_file, "", skip);
+          std::istringstream in(expanded.text);
+          prm.parse_input(in, parameter_file, "", skip);
         }
       catch (const dealii::ExceptionBase &e)
         {
-          std::string msg = one_line_message(e);
+          std::string msg = locate(one_line_message(e), expanded);
           if (msg.find("No entry with name") != std::string::npos ||
               msg.find("no subsection") != std::string::npos)
             msg += " ('anvil --print-parameters' lists every entry)";
@@ -240,6 +353,26 @@ namespace anvil
         end_time         = prm.get_double("End time");
         time_step_factor = prm.get_double("Time step safety factor");
         max_steps        = prm.get_integer("Maximum number of steps");
+        end_kinetic_fraction = prm.get_double("End kinetic energy fraction");
+        end_quiet_time       = prm.get_double("End quiet time");
+        {
+          const std::string expression = prm.get("Maximum time step");
+          max_dt_function = std::make_unique<dealii::FunctionParser<1>>(1);
+          try
+            {
+              max_dt_function->initialize("t", expression, {});
+              const double probe = max_dt_function->value(dealii::Point<1>(0.));
+              if (!std::isfinite(probe))
+                throw std::runtime_error("not finite at t = 0");
+            }
+          catch (...)
+            {
+              throw InputError("entry 'Simulation/Maximum time step': '" +
+                               expression.substr(0, 60) +
+                               "' is not a number or an expression in t (muparser syntax, "
+                               "for example 1e-7 or if(t < 0.01, 1e-7, 1e-6))");
+            }
+        }
         output_interval  = prm.get_double("Output interval");
         history_interval = prm.get_double("History interval");
         energy_tolerance = prm.get_double("Energy balance tolerance");

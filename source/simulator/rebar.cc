@@ -243,6 +243,7 @@ namespace anvil
               T.ms[i] = layout.material->density() * layout.area() * T.tributary[i];
             // The last node of every bar, for a pull-out.
             T.pulled.assign(n, false);
+            T.pull_reaction.assign(3 * n, 0.);
             if (layout.pulled)
               for (unsigned int k = 0; k < T.elements.size(); ++k)
                 if (k + 1 == T.elements.size() || T.elements[k + 1][0] != T.elements[k][1])
@@ -525,7 +526,8 @@ namespace anvil
   void Simulator::update_rebar_velocity(const double dt_previous,
                                         const double dt,
                                         double      &kinetic,
-                                        double      &work)
+                                        double      &work,
+                                        double      &power)
   {
     const double dt_avg = 0.5 * (dt_previous + dt);
     for (unsigned int r = 0; r < rebars.size(); ++r)
@@ -538,16 +540,24 @@ namespace anvil
                 const unsigned int j     = 3 * i + d;
                 const double       v_old = T.vs[j];
                 const double       f     = T.fs[j] + T.ms[i] * gravity[d];
+                // As for the host nodes (Simulator::update_velocity): the
+                // kinetic energy of the variable-step identity, and the
+                // pull reaction's work by the trapezoidal rule.
+                double f_total = f;
                 if (T.pulled[i])
                   {
                     const double vp = rebar_layouts[r].pull_velocity[d];
-                    if (dt_avg > 0)
-                      work += T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg * vp * dt;
+                    const double reaction =
+                      dt_avg > 0 ? T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg : 0.;
+                    work += 0.5 * (T.pull_reaction[j] + reaction) * v_old * dt_previous;
+                    T.pull_reaction[j] = reaction;
+                    f_total += reaction;
                     T.vs[j] = vp;
                   }
                 else
                   T.vs[j] += dt_avg * f / T.ms[i];
-                kinetic += 0.5 * T.ms[i] * v_old * T.vs[j];
+                kinetic += 0.5 * v_old * (T.ms[i] * v_old + dt_previous * f_total);
+                power += f_total * (T.vs[j] - v_old);
               }
         }
   }

@@ -271,6 +271,8 @@ namespace anvil
         constrained_velocity.push_back(value);
         velocity(dof) = value;
       }
+    constrained_reaction.assign(constrained_dofs.size(), 0.);
+    constrained_velocity_old.assign(constrained_dofs.size(), 0.);
   }
 
 

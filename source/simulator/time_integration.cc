@@ -223,8 +223,19 @@ namespace anvil
   // @sect3{Central difference update}
   //
   // The velocity update also gives the kinetic energy at the integer time
-  // n as 1/2 v^{n-1/2} M v^{n+1/2}, the form that the leapfrog scheme
-  // conserves, and the work of the reaction forces at constrained dofs.
+  // n and the work of the reaction forces at constrained dofs, in the forms
+  // that make the discrete energy identity of the scheme hold for variable
+  // steps (doc/theory.md, "Energy balance with variable steps"):
+  //
+  //   K^n = 1/2 v^{n-1/2} . (M v^{n-1/2} + dt^{n-1/2} F^n),
+  //
+  // the kinetic energy of the last half-step velocity plus the work of the
+  // force F^n = M a^n over the second half of the last step, and the
+  // reaction work by the trapezoidal rule over the step just made,
+  // (R^{n-1} + R^n)/2 . (x^n - x^{n-1}), the rule the elements use for
+  // the internal energy. (The form 1/2 v^{n-1/2} M v^{n+1/2} agrees with
+  // K^n only when dt^{n+1/2} = dt^{n-1/2}: a step cut short by the end
+  // time or a change of the stable step made it jump.)
   // Histories are written between the velocity and the position update,
   // when positions are those of time n.
   void Simulator::update_velocity(const double dt_previous, const double dt)
@@ -235,42 +246,60 @@ namespace anvil
     double            *v      = velocity.begin();
     const double      *f      = force.begin();
     const double      *m      = mass.begin();
-    double             kinetic = 0;
+    // sum_i v^{n-1/2} (m v^{n-1/2} + dt^{n-1/2} F^n) and sum_i F^n dv.
+    double kinetic = 0, power = 0;
+    // The velocities v^{n-1/2} of the constrained dofs, before the update.
+    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
+      constrained_velocity_old[k] = v[constrained_dofs[k]];
     if (rigid_dof.empty())
       for (unsigned int i = 0; i < n; ++i)
         {
           const double v_old = v[i];
-          v[i] += dt_avg * f[i] / m[i];
-          kinetic += m[i] * v_old * v[i];
+          const double dv    = dt_avg * f[i] / m[i];
+          v[i] += dv;
+          kinetic += v_old * (m[i] * v_old + dt_previous * f[i]);
+          power += f[i] * dv;
         }
     else
       for (unsigned int i = 0; i < n; ++i)
         if (!rigid_dof[i])
           {
             const double v_old = v[i];
-            v[i] += dt_avg * f[i] / m[i];
-            kinetic += m[i] * v_old * v[i];
+            const double dv    = dt_avg * f[i] / m[i];
+            v[i] += dv;
+            kinetic += v_old * (m[i] * v_old + dt_previous * f[i]);
+            power += f[i] * dv;
           }
     double work = 0;
     for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
       {
-        const unsigned int i = constrained_dofs[k];
-        // Reaction R = M (v_prescribed - v_free) / dt_avg does work
-        // R v_prescribed dt over the coming step.
-        if (dt_avg > 0)
-          work += m[i] * (constrained_velocity[k] - v[i]) / dt_avg *
-                  constrained_velocity[k] * dt;
-        v[i] = constrained_velocity[k];
+        const unsigned int i     = constrained_dofs[k];
+        const double       v_old = constrained_velocity_old[k];
+        // Reaction R^n = M (v_prescribed - v_free) / dt_avg: it joins f in
+        // K^n, and does the work (R^{n-1} + R^n)/2 v^{n-1/2} dt^{n-1/2}.
+        const double reaction =
+          dt_avg > 0 ? m[i] * (constrained_velocity[k] - v[i]) / dt_avg : 0.;
+        kinetic += v_old * dt_previous * reaction;
+        work += 0.5 * (constrained_reaction[k] + reaction) * v_old * dt_previous;
+        // F^n dv with F^n = f + R and dv = v_prescribed - v_old.
+        power += (f[i] + reaction) * (constrained_velocity[k] - v_old) - f[i] * (v[i] - v_old);
+        constrained_reaction[k] = reaction;
+        v[i]                    = constrained_velocity[k];
       }
-    std::vector<double> sums = {kinetic, work};
+    std::vector<double> sums = {kinetic, work, power};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
-    double rigid_kinetic = 0, rigid_work = 0;
+    double rigid_kinetic = 0, rigid_work = 0, rigid_power = 0;
     if (!rigid_dof.empty())
-      advance_rigid_bodies(dt_previous, dt, rigid_kinetic, rigid_work);
+      advance_rigid_bodies(dt_previous, dt, rigid_kinetic, rigid_work, rigid_power);
     if (!rebars.empty())
-      update_rebar_velocity(dt_previous, dt, rigid_kinetic, rigid_work);
+      update_rebar_velocity(dt_previous, dt, rigid_kinetic, rigid_work, rigid_power);
     energies.kinetic = 0.5 * sums[0] + rigid_kinetic;
     energies.external_work += sums[1] + rigid_work;
+    // The identity at time n holds with the step-change terms of the steps
+    // before n; this step's is booked at n+1. The last call (dt = 0, the
+    // synchronisation of the velocities) needs none: K^n is exact there.
+    energies.step_change += pending_step_change;
+    pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + rigid_power) : 0.;
   }
 
 
@@ -282,11 +311,12 @@ namespace anvil
   // node gets the velocity that carries it exactly to its rigid placement at
   // n+1, so the common position update keeps the body rigid. A body of
   // prescribed motion is held by a reaction equal and opposite to the
-  // resultant, whose work -(F . V + T . omega) dt is external work.
+  // resultant, whose work is external work (Motion::advance).
   void Simulator::advance_rigid_bodies(const double dt_previous,
                                        const double dt,
                                        double      &kinetic,
-                                       double      &work)
+                                       double      &work,
+                                       double      &power)
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].is_rigid())
@@ -314,12 +344,16 @@ namespace anvil
           T += rigid_shape_torque[b];
           // Gravity: M g at the centre of mass.
           F += motion.mass * gravity;
-          if (!motion.free)
-            work -= (F * motion.velocity + T * motion.angular_velocity) * dt;
+          // Work of gravity over the last step: the centre moved by exactly
+          // V^{n-1/2} dt^{n-1/2}.
+          work += motion.mass * (gravity * motion.velocity) * dt_previous;
+          const Tensor<1, 3> V_old = motion.velocity, w_old = motion.angular_velocity;
           kinetic += motion.advance(F, T, dt_previous, dt);
-          // Work of gravity over the coming step: the centre moves by
-          // exactly V^{n+1/2} dt.
-          work += motion.mass * (gravity * motion.velocity) * dt;
+          work += motion.last_reaction_work;
+          // F_tot . dV + T_tot . d omega, with the totals (reactions
+          // included) that moved the body.
+          power += (F + motion.reaction_force) * (motion.velocity - V_old) +
+                   (T + motion.reaction_torque) * (motion.angular_velocity - w_old);
           for (const auto &[i, X] : rigid_nodes[b])
             {
               Point<3> x;
@@ -417,6 +451,25 @@ namespace anvil
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far; limit "
           << 100. * energy_tolerance
           << " %, 'Energy balance tolerance'): a material returns more work than it took";
+        problem = s.str();
+      }
+    // Energy created by changes of the step: the variable-step scheme is
+    // not unconditionally stable even below the stable step of every single
+    // step (a step that switches back and forth resonates with the mesh's
+    // modes); the balance closes with this term, so it is checked itself.
+    if (-energies.step_change > energy_tolerance * scale)
+      ++step_change_steps;
+    else
+      step_change_steps = 0;
+    if (problem.empty() && step_change_steps >= 10)
+      {
+        std::ostringstream s;
+        s << "the changes of the time step created " << -energies.step_change << " J ("
+          << -100. * energies.step_change / scale
+          << " % of the largest of E_kin, E_int, E_0, |W_ext| so far; limit "
+          << 100. * energy_tolerance
+          << " %, 'Energy balance tolerance'): a step that varies back and forth resonates "
+             "with the mesh; vary it more slowly or lower 'Time step safety factor'";
         problem = s.str();
       }
     const bool other_problem = !problem.empty();
@@ -595,6 +648,7 @@ namespace anvil
         energies.kinetic += 0.5 * (b.rigid.mass * (b.rigid.velocity * b.rigid.velocity) +
                                    b.rigid.angular_velocity * (b.rigid.reference_inertia * b.rigid.angular_velocity));
     initial_energy   = energies.total();
+    summary.initial_kinetic = energies.kinetic;
     output_results(0., "solution");
 
     const auto   wall_start    = std::chrono::steady_clock::now();
@@ -603,9 +657,10 @@ namespace anvil
     double       next_history  = 0;
     double       next_progress = 0;
     const double eps           = 1e-12 * end_time;
+    bool quiet_end = false;
     while (true)
       {
-        const bool last = time >= end_time - eps;
+        const bool last = time >= end_time - eps || quiet_end;
         // The stable step from the current configuration (seed section
         // 3.6); the last step only synchronises the velocity.
         // With contact springs of frequency omega_c on top of the elements'
@@ -617,6 +672,12 @@ namespace anvil
             1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
             critical_dt;
         current_dt = last ? dt_previous : std::min(time_step_factor * dt_stable, end_time - time);
+        if (!last && max_dt_function)
+          {
+            const double dt_max = max_dt_function->value(Point<1>(time));
+            if (dt_max > 0 && dt_max < current_dt)
+              current_dt = dt_max;
+          }
         if (!(current_dt > 0))
           current_dt = dt_previous;
 
@@ -627,6 +688,10 @@ namespace anvil
 
         update_velocity(dt_previous, last ? 0. : current_dt);
         check_health(time, step_number, time_step_factor * dt_stable);
+        // The end criterion, met at time n, makes n+1 the last time (the
+        // velocities are at n+1/2 already).
+        if (update_summary(time) && !last)
+          quiet_end = true;
         if (time >= next_history - eps || last)
           {
             write_history(time, last ? 0. : current_dt);
@@ -676,6 +741,11 @@ namespace anvil
     output_results(time, "solution");
     write_pvd();
     write_body_summary();
+    write_summary(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+    if (summary.ended_early)
+      pcout << "  the impact is over (no contact force, kinetic energy of the deformable bodies below "
+            << end_kinetic_fraction << " E_0 for " << end_quiet_time
+            << " s): the run ends before 'End time'" << std::endl;
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance_error;
     if (n_eroded > 0)

@@ -114,6 +114,8 @@ namespace anvil::Rebar
     std::vector<double>       xs, vs, fs, ms, xh;
     std::vector<double>       plastic_slip, damage, bond_stress, slip, bond_force;
     std::vector<bool> pulled;
+    /** Reaction at the pulled nodes' dofs in the last step (3 per node). */
+    std::vector<double> pull_reaction;
     /** Work arrays of the step (no allocation per step): nodal forces and
         bar tangents. */
     std::vector<double>               nodal_force;

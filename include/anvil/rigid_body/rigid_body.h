@@ -91,7 +91,11 @@ namespace anvil::RigidBody
     /**
      * Advance the half-step velocities with the force and torque of time n
      * over (dt_previous + dt) / 2, then the placement over dt. Returns the
-     * kinetic energy at time n, 1/2 (M V^- . V^+ + omega^- . I omega^+).
+     * kinetic energy at time n in the form of the variable-step energy
+     * identity (doc/theory.md), 1/2 V^- . (M V^- + dt_previous F_tot) plus
+     * its rotational counterpart, where F_tot includes the reactions of
+     * prescribed motion and constraints. The work those reactions did over
+     * the last step (trapezoidal rule) is left in last_reaction_work.
      */
     double advance(const dealii::Tensor<1, 3> &force,
                    const dealii::Tensor<1, 3> &torque,
@@ -116,6 +120,10 @@ namespace anvil::RigidBody
     dealii::Tensor<1, 3>  velocity, angular_velocity, angular_momentum;
     dealii::Tensor<1, 3>  last_force;
     double                kinetic_energy = 0;
+    /** Reactions of prescribed motion and constraints at time n (force and
+        torque about the centre), and their work over the last step. */
+    dealii::Tensor<1, 3>  reaction_force, reaction_torque;
+    double                last_reaction_work = 0;
 
   private:
     dealii::Tensor<1, 3> initial_velocity;

@@ -12,6 +12,7 @@
 #include <anvil/rebar/rebar.h>
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
@@ -41,10 +42,15 @@ namespace anvil
     /** Work done on the bond of bond-slip reinforcement (elastic and
         dissipated). */
     double bond          = 0;
+    /** The energy the central difference scheme itself removes when the
+        step changes, sum over steps of 1/4 (dt^{n+1/2} - dt^{n-1/2})
+        F^n . (v^{n+1/2} - v^{n-1/2}) (doc/theory.md, "Energy balance with
+        variable steps"); negative: energy created. */
+    double step_change   = 0;
     double external_work = 0;
     double total() const
     {
-      return kinetic + internal + hourglass + contact + friction + eroded + bond;
+      return kinetic + internal + hourglass + contact + friction + eroded + bond + step_change;
     }
   };
 
@@ -117,7 +123,8 @@ namespace anvil
     void   output_rebar(double time, unsigned int count);
     /** Bond-slip bars: advance their nodes (leapfrog, replicated); the
         kinetic energy at time n is returned through @p kinetic. */
-    void   update_rebar_velocity(double dt_previous, double dt, double &kinetic, double &work);
+    void   update_rebar_velocity(double dt_previous, double dt, double &kinetic, double &work,
+                                 double &step_change);
     void   update_rebar_position(double dt);
     void setup_probes();
     void prepare_output_directory();
@@ -145,6 +152,29 @@ namespace anvil
         peak effective plastic strain, current bounding box. */
     void write_body_summary();
 
+    /** Figures of the run that summary.csv reports (source/simulator/
+        summary.cc); updated every step from replicated data, the probe on
+        rank 0 at each history row. */
+    struct Summary
+    {
+      double peak_displacement     = 0;
+      double residual_displacement = 0;
+      double peak_contact_force    = 0;
+      double contact_start = -1, contact_end = -1;
+      double initial_kinetic       = 0;
+      double max_hourglass_ratio   = 0;
+      double max_balance_error     = 0;
+      /** Start of the current quiet period (end criterion), -1: none. */
+      double quiet_since = -1;
+      bool   ended_early = false;
+    };
+    Summary summary;
+    /** Per step: the summary figures and the end criterion; true when the
+        criterion says the run ends now. */
+    bool update_summary(double time);
+    void record_probe_summary(const std::vector<double> &probe_values, unsigned int n_values);
+    void write_summary(double wall_time);
+
     MPI_Comm                   mpi_communicator;
     dealii::ConditionalOStream pcout;
     std::unique_ptr<dealii::TimerOutput> timer;
@@ -159,6 +189,13 @@ namespace anvil
     double      history_interval;
     double      energy_tolerance;
     double      min_dt_ratio;
+    /** End criterion: the run ends once no contact pair carries force and
+        the kinetic energy of the deformable bodies has stayed below
+        end_kinetic_fraction E_0 for end_quiet_time (0: off). */
+    double      end_kinetic_fraction = 0;
+    double      end_quiet_time       = 0.01;
+    /** 'Maximum time step' as a function of t (<= 0: no bound). */
+    std::unique_ptr<dealii::FunctionParser<1>> max_dt_function;
     /** Gravitational acceleration of the scene (body force rho g). */
     dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
@@ -201,11 +238,15 @@ namespace anvil
         analytic contact shapes, this step (replicated on every rank). */
     std::vector<dealii::Tensor<1, 3>> rigid_shape_force, rigid_shape_torque;
     std::vector<std::ofstream>        rigid_files;
-    void advance_rigid_bodies(double dt_previous, double dt, double &kinetic, double &work);
+    void advance_rigid_bodies(double dt_previous, double dt, double &kinetic, double &work,
+                              double &step_change);
 
     /** Constrained dofs (local indices) and their prescribed velocities. */
     std::vector<unsigned int> constrained_dofs;
     std::vector<double>       constrained_velocity;
+    /** Per constrained dof: the reaction of the last step (for the
+        trapezoidal reaction work) and v^{n-1/2} during the update. */
+    std::vector<double>       constrained_reaction, constrained_velocity_old;
 
     /** Per contact pair: local index of each pair node's x dof on this rank
         if owned, else -1; and the gather/scatter buffers. */
@@ -220,6 +261,12 @@ namespace anvil
     /** Running maximum of E_kin, E_int, E_0, |W_ext|: the balance scale. */
     double       energy_scale   = 0;
     double       critical_dt    = 0;
+    /** The step-change energy of time n, booked at n+1 (the identity at
+        time n holds with the terms of the earlier steps). */
+    double       pending_step_change = 0;
+    /** Consecutive steps with the step-change energy creating more than
+        the tolerance. */
+    unsigned int step_change_steps = 0;
     /** Largest k/m of the contact penalty springs (all pairs); the stable
         step is 2 / sqrt(omega_e^2 + omega_c^2) with omega_e = 2 / dt_e. */
     double       contact_frequency_squared = 0;

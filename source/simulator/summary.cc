@@ -1,0 +1,130 @@
+/**
+ * @file
+ * summary.csv: the figures of a run that studies and tests read (peak and
+ * residual displacement of the first probe, peak force and duration of the
+ * first contact pair, energy conversion, hourglass share, balance, cost),
+ * and the end criterion of an impact that is over.
+ */
+#include <anvil/simulator/simulator.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  // Every step, after the health check, from data every rank holds (the
+  // energies and the replicated contact results): no communication.
+  bool Simulator::update_summary(const double t)
+  {
+    summary.max_balance_error = std::max(summary.max_balance_error, balance_error);
+    // The hourglass share once the internal energy is a measurable part of
+    // the initial energy (before, a ratio of two round-off figures).
+    if (energies.internal > 0.01 * std::abs(initial_energy))
+      summary.max_hourglass_ratio =
+        std::max(summary.max_hourglass_ratio, energies.hourglass / energies.internal);
+
+    bool in_contact = false;
+    for (unsigned int p = 0; p < contact_results.size(); ++p)
+      {
+        const auto  &f     = contact_results[p].force_on_first;
+        const double force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        if (force > 0)
+          in_contact = true;
+        if (p == 0 && force > 0)
+          {
+            summary.peak_contact_force = std::max(summary.peak_contact_force, force);
+            if (summary.contact_start < 0)
+              summary.contact_start = t;
+            summary.contact_end = t;
+          }
+      }
+
+    if (end_kinetic_fraction <= 0)
+      return false;
+    double rigid_kinetic = 0;
+    for (const auto &b : bodies)
+      if (b.is_rigid())
+        rigid_kinetic += b.rigid.kinetic_energy;
+    const double deformable_kinetic = energies.kinetic - rigid_kinetic;
+    const bool   quiet =
+      !in_contact && deformable_kinetic < end_kinetic_fraction * std::abs(initial_energy);
+    if (!quiet)
+      {
+        summary.quiet_since = -1;
+        return false;
+      }
+    if (summary.quiet_since < 0)
+      summary.quiet_since = t;
+    if (t - summary.quiet_since >= end_quiet_time)
+      {
+        summary.ended_early = true;
+        return true;
+      }
+    return false;
+  }
+
+
+  // At each history row, on rank 0: the first probe's displacement.
+  void Simulator::record_probe_summary(const std::vector<double> &probe_values,
+                                       const unsigned int         n_values)
+  {
+    (void)n_values;
+    if (probes.empty())
+      return;
+    const double u = std::sqrt(probe_values[0] * probe_values[0] + probe_values[1] * probe_values[1] +
+                               probe_values[2] * probe_values[2]);
+    summary.peak_displacement     = std::max(summary.peak_displacement, u);
+    summary.residual_displacement = u;
+  }
+
+
+  // summary.csv, two columns 'quantity,value', units in the names; written
+  // under a temporary name and renamed, so a reader never sees half a file.
+  void Simulator::write_summary(const double wall_time)
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    const std::string name = output_directory + "/summary.csv";
+    {
+      std::ofstream out(name + ".tmp");
+      out << std::setprecision(10) << "quantity,value\n";
+      out << "end_time_s," << time << '\n';
+      out << "ended_by_criterion," << (summary.ended_early ? 1 : 0) << '\n';
+      if (!probes.empty())
+        {
+          out << "peak_displacement_m," << summary.peak_displacement << '\n';
+          out << "residual_displacement_m," << summary.residual_displacement << '\n';
+        }
+      if (!contact_pairs.empty())
+        {
+          out << "peak_contact_force_N," << summary.peak_contact_force << '\n';
+          out << "contact_duration_s,"
+              << (summary.contact_start < 0 ? 0. : summary.contact_end - summary.contact_start)
+              << '\n';
+        }
+      out << "initial_energy_J," << initial_energy << '\n';
+      out << "final_kinetic_energy_J," << energies.kinetic << '\n';
+      out << "kinetic_energy_converted,"
+          << (summary.initial_kinetic > 0 ? 1. - energies.kinetic / summary.initial_kinetic : 0.)
+          << '\n';
+      out << "internal_energy_J," << energies.internal << '\n';
+      out << "hourglass_energy_J," << energies.hourglass << '\n';
+      out << "max_hourglass_to_internal," << summary.max_hourglass_ratio << '\n';
+      out << "max_balance_error," << summary.max_balance_error << '\n';
+      out << "wall_time_s," << wall_time << '\n';
+      out << "steps," << step_number << '\n';
+      out << "elements," << triangulation.n_global_active_cells() << '\n';
+      out << "processes," << Utilities::MPI::n_mpi_processes(mpi_communicator) << '\n';
+      out.flush();
+      if (!out)
+        throw std::runtime_error("could not write " + name + ".tmp (disk full or no permission)");
+    }
+    std::rename((name + ".tmp").c_str(), name.c_str());
+  }
+} // namespace anvil
