@@ -56,7 +56,9 @@ namespace anvil
       !in_contact && deformable_kinetic < end_kinetic_fraction * std::abs(initial_energy);
     if (!quiet)
       {
-        summary.quiet_since = -1;
+        summary.quiet_since            = -1;
+        summary.quiet_displacement_sum = 0;
+        summary.quiet_rows             = 0;
         return false;
       }
     if (summary.quiet_since < 0)
@@ -81,6 +83,11 @@ namespace anvil
                                probe_values[2] * probe_values[2]);
     summary.peak_displacement     = std::max(summary.peak_displacement, u);
     summary.residual_displacement = u;
+    if (summary.quiet_since >= 0)
+      {
+        summary.quiet_displacement_sum += u;
+        ++summary.quiet_rows;
+      }
   }
 
 
@@ -99,7 +106,14 @@ namespace anvil
       if (!probes.empty())
         {
           out << "peak_displacement_m," << summary.peak_displacement << '\n';
-          out << "residual_displacement_m," << summary.residual_displacement << '\n';
+          // Residual: when the end criterion ended the run, the mean over
+          // its quiet period (the member still rings about its residual
+          // shape); else the last value.
+          out << "residual_displacement_m,"
+              << (summary.ended_early && summary.quiet_rows > 0 ?
+                    summary.quiet_displacement_sum / summary.quiet_rows :
+                    summary.residual_displacement)
+              << '\n';
         }
       if (!contact_pairs.empty())
         {

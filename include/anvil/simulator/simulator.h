@@ -164,8 +164,11 @@ namespace anvil
       double initial_kinetic       = 0;
       double max_hourglass_ratio   = 0;
       double max_balance_error     = 0;
-      /** Start of the current quiet period (end criterion), -1: none. */
-      double quiet_since = -1;
+      /** Start of the current quiet period (end criterion), -1: none; the
+          first probe's displacement summed over its history rows. */
+      double       quiet_since = -1;
+      double       quiet_displacement_sum = 0;
+      unsigned int quiet_rows = 0;
       bool   ended_early = false;
     };
     Summary summary;
