@@ -95,6 +95,26 @@ lines = [l for l in err.splitlines() if l.strip()]
 print(f"    unknown_body: {lines[-1] if lines else ''}")
 c.check_true("unknown body: exit 2 with one line naming it", code == 2 and len(lines) == 1 and "blok" in lines[0])
 
+# Includes: a scene that includes itself through another file, and an
+# include that names no file; resolved relative to the including file, so
+# a scene in another folder includes its neighbour by its bare name.
+os.makedirs(os.path.join(args.work_dir, "includes"), exist_ok=True)
+write_scene(os.path.join(args.work_dir, "includes", "a.prm"), text="include b.prm\n")
+write_scene(os.path.join(args.work_dir, "includes", "b.prm"), text="include a.prm\n")
+write_scene(os.path.join(args.work_dir, "includes", "missing.prm"), text="include no_such_scene.prm\n")
+write_scene(os.path.join(args.work_dir, "includes", "base.prm"), text=block.format(mesh="", nu="0.3", extra=""))
+write_scene(os.path.join(args.work_dir, "includes", "variant.prm"), text="include base.prm\n")
+for name, words in (("a", ["includes itself"]), ("missing", ["no_such_scene.prm", "does not exist"])):
+    code, out, err = run_anvil(args.anvil, os.path.join("includes", name + ".prm"), cwd=args.work_dir,
+                               extra_args=["--check"])
+    lines = [l for l in err.splitlines() if l.strip()]
+    print(f"    include {name}: {lines[-1] if lines else ''}")
+    c.check_true(f"include {name}: exit 2 with one line", code == 2 and len(lines) == 1 and
+                 all(w in lines[0] for w in words))
+code, out, err = run_anvil(args.anvil, os.path.join("includes", "variant.prm"), cwd=args.work_dir,
+                           extra_args=["--check"])
+c.check_true("an include relative to the including file, run from another folder", code == 0, err.strip())
+
 # Inverted element during the run: one face driven into the block at 60 m/s
 # (half the wave speed), for long enough to turn elements inside out.
 prm = write_scene(os.path.join(args.work_dir, "inverted.prm"),
