@@ -76,9 +76,34 @@ namespace anvil
             momentum[3 * b + d] =
               m.mass * m.velocity[d] - (m.free ? 0.5 * dt * m.last_force[d] : 0.);
         }
+    // Support reactions, summed per boundary condition.
+    std::vector<double> reactions(bc_reaction);
+    if (!reactions.empty())
+      Utilities::MPI::sum(reactions, mpi_communicator, reactions);
     if (!root)
       return;
     record_probe_summary(probe_values, n_values);
+    if (!reactions.empty())
+      {
+        if (!reaction_file.is_open())
+          {
+            reaction_file.open(output_directory + "/reactions.csv");
+            reaction_file << "time";
+            for (const auto &bc : boundary_conditions)
+              reaction_file << ',' << bc.name << "_fx," << bc.name << "_fy," << bc.name << "_fz";
+            reaction_file << '\n';
+          }
+        reaction_file << std::setprecision(12) << t;
+        for (unsigned int k = 0; k < reactions.size(); ++k)
+          reaction_file << ',' << reactions[k];
+        reaction_file << '\n';
+        for (unsigned int b = 0; b < boundary_conditions.size(); ++b)
+          summary.peak_reaction =
+            std::max(summary.peak_reaction,
+                     std::sqrt(reactions[3 * b] * reactions[3 * b] +
+                               reactions[3 * b + 1] * reactions[3 * b + 1] +
+                               reactions[3 * b + 2] * reactions[3 * b + 2]));
+      }
 
     if (!energy_file.is_open())
       {
@@ -178,6 +203,7 @@ namespace anvil
           f.flush();
         for (auto &f : contact_files)
           f.flush();
+        reaction_file.flush();
       }
   }
 
@@ -392,5 +418,6 @@ namespace anvil
       f.flush();
     for (auto &f : rebar_files)
       f.flush();
+    reaction_file.flush();
   }
 } // namespace anvil

@@ -233,6 +233,14 @@ namespace anvil
                         "The run stops with an error when the stable time step "
                         "falls below this fraction of the first step's (a collapsing "
                         "element; LS-DYNA's DTMIN); 0: never. Units: none.");
+      prm.declare_entry("Plots",
+                        "false",
+                        Patterns::Bool(),
+                        "At the end of the run, write PNG plots beside the CSV "
+                        "histories (energies, probes, contact forces, support "
+                        "reactions, rigid bodies) with Python's matplotlib "
+                        "(Debian: python3-matplotlib); without it the run says "
+                        "the plots were skipped.");
       prm.declare_entry("Print wall times",
                         "true",
                         Patterns::Bool(),
@@ -383,6 +391,7 @@ namespace anvil
             gravity[d] = dealii::Utilities::string_to_double(g[d]);
         }
         print_wall_times = prm.get_bool("Print wall times");
+        make_plots       = prm.get_bool("Plots");
         prm.leave_subsection();
         if (time_step_factor <= 0)
           throw InputError("entry 'Simulation/Time step safety factor' must "

@@ -227,7 +227,8 @@ namespace anvil
   // @sect3{Boundary conditions}
   void Simulator::setup_boundary_conditions()
   {
-    std::map<types::global_dof_index, double> prescribed;
+    std::map<types::global_dof_index, double>       prescribed;
+    std::map<types::global_dof_index, unsigned int> prescribed_by;
     std::vector<unsigned int>                 matched(boundary_conditions.size(), 0);
 
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -251,7 +252,8 @@ namespace anvil
                       const auto dof = cell->vertex_dof_index(v, c);
                       if (dof_handler.locally_owned_dofs().is_element(dof))
                         {
-                          prescribed[dof] = bc.velocity[c];
+                          prescribed[dof]    = bc.velocity[c];
+                          prescribed_by[dof] = k;
                           ++matched[k];
                         }
                     }
@@ -265,13 +267,16 @@ namespace anvil
                          boundary_conditions[k].body + "'");
     constrained_dofs.clear();
     constrained_velocity.clear();
+    constrained_bc.clear();
     for (const auto &[dof, value] : prescribed)
       {
         constrained_dofs.push_back(position.get_partitioner()->global_to_local(dof));
         constrained_velocity.push_back(value);
+        constrained_bc.push_back(3 * prescribed_by[dof] + dof_component[constrained_dofs.back()]);
         velocity(dof) = value;
       }
     constrained_reaction.assign(constrained_dofs.size(), 0.);
+    bc_reaction.assign(3 * boundary_conditions.size(), 0.);
     constrained_velocity_old.assign(constrained_dofs.size(), 0.);
   }
 

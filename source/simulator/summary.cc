@@ -10,9 +10,12 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <string>
 
 namespace anvil
 {
@@ -122,6 +125,8 @@ namespace anvil
               << (summary.contact_start < 0 ? 0. : summary.contact_end - summary.contact_start)
               << '\n';
         }
+      if (!boundary_conditions.empty())
+        out << "peak_support_reaction_N," << summary.peak_reaction << '\n';
       out << "initial_energy_J," << initial_energy << '\n';
       out << "final_kinetic_energy_J," << energies.kinetic << '\n';
       out << "kinetic_energy_converted,"
@@ -140,5 +145,34 @@ namespace anvil
         throw std::runtime_error("could not write " + name + ".tmp (disk full or no permission)");
     }
     std::rename((name + ".tmp").c_str(), name.c_str());
+  }
+
+
+  void Simulator::write_plots()
+  {
+    if (!make_plots || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::error_code             ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::filesystem::path script = exe.parent_path() / "anvil_plot.py";
+    if (ec || !std::filesystem::exists(script))
+      {
+        pcout << "  plots skipped: anvil_plot.py is not beside the executable" << std::endl;
+        return;
+      }
+    // Debian's interpreter first: it sees Debian's python3-matplotlib.
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string command = python + " '" + script.string() + "' '" + output_directory +
+                                "' > '" + output_directory + "/plots.log' 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream log(output_directory + "/plots.log");
+    std::string   line, last;
+    while (std::getline(log, line))
+      if (!line.empty())
+        last = line;
+    if (status == 0)
+      pcout << "  " << last << std::endl;
+    else
+      pcout << "  plots skipped: " << (last.empty() ? "the plotting script failed" : last) << std::endl;
   }
 } // namespace anvil

@@ -271,6 +271,7 @@ namespace anvil
             power += f[i] * dv;
           }
     double work = 0;
+    std::fill(bc_reaction.begin(), bc_reaction.end(), 0.);
     for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
       {
         const unsigned int i     = constrained_dofs[k];
@@ -284,6 +285,7 @@ namespace anvil
         // F^n dv with F^n = f + R and dv = v_prescribed - v_old.
         power += (f[i] + reaction) * (constrained_velocity[k] - v_old) - f[i] * (v[i] - v_old);
         constrained_reaction[k] = reaction;
+        bc_reaction[constrained_bc[k]] += reaction;
         v[i]                    = constrained_velocity[k];
       }
     std::vector<double> sums = {kinetic, work, power};
@@ -742,6 +744,7 @@ namespace anvil
     write_pvd();
     write_body_summary();
     write_summary(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+    write_plots();
     if (summary.ended_early)
       pcout << "  the impact is over (no contact force, kinetic energy of the deformable bodies below "
             << end_kinetic_fraction << " E_0 for " << end_quiet_time

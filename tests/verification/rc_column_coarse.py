@@ -5,7 +5,9 @@ Impact (270 kg at 2 m/s, the end criterion ends the runs):
   error below 2 %; their peak impact-point displacements agree within 10 %
   (the paper: 5 %);
 - conservation of momentum across the contact: the impulse of the contact
-  force on the hammer equals the change of the hammer's momentum (1 %);
+  force on the hammer equals the change of the hammer's momentum, and the
+  support reactions' impulse less the contact impulse equals the column's
+  (1e-3 of the hammer's change);
 - summary.csv agrees with the histories it summarises;
 - np = 2 gives the same histories as np = 1 (bitwise).
 
@@ -59,7 +61,19 @@ for name, out in (("bond-slip", bond), ("common node", common)):
     impulse = sum(0.5 * (ff[i] + ff[i + 1]) * (t[i + 1] - t[i]) for i in range(len(t) - 1))
     dp = 270.0 * (hammer["vx"][-1] - hammer["vx"][0])
     c.check(f"{name}: contact impulse on the hammer against its change of momentum (N s)",
-            impulse, dp, 0.01 * abs(dp))
+            impulse, dp, 1e-3 * abs(dp))
+
+    # The column's momentum: support reactions plus the contact force on
+    # the column (minus that on the hammer) change it.
+    reactions = read_csv(os.path.join(out, "reactions.csv"))
+    momentum = read_csv(os.path.join(out, "momentum.csv"))
+    rx = [a + b for a, b in zip(reactions["bottom_fx"], reactions["top_fx"])]
+    support_impulse = sum(0.5 * (rx[i] + rx[i + 1]) * (t[i + 1] - t[i]) for i in range(len(t) - 1))
+    dp_column = momentum["column_px"][-1] - momentum["column_px"][0]
+    c.check(f"{name}: support impulse minus contact impulse against the column's change of momentum (N s)",
+            support_impulse - impulse, dp_column, 1e-3 * abs(dp))
+    print(f"    support impulse {support_impulse:.4g} N s, peak support reaction "
+          f"{1e-3 * s['peak_support_reaction_N']:.1f} kN")
 
     # summary.csv against the histories.
     probe = read_csv(os.path.join(out, "probe_impact_point.csv"))
@@ -70,6 +84,9 @@ for name, out in (("bond-slip", bond), ("common node", common)):
     c.check(f"{name}: summary converted fraction against energy.csv",
             s["kinetic_energy_converted"], 1 - energy["kinetic"][-1] / energy["kinetic"][0], 1e-6)
 
+c.check_true("the run made its plots (energy.png, probe_impact_point.png, contact_impact.png, reactions.png)",
+             all(os.path.exists(os.path.join(bond, f)) for f in
+                 ("energy.png", "probe_impact_point.png", "contact_impact.png", "reactions.png")))
 s_bond, s_common = summary(bond), summary(common)
 c.check("peak displacement, common node against bond-slip (relative)",
         s_common["peak_displacement_m"], s_bond["peak_displacement_m"], 0.10, relative=True)

@@ -164,6 +164,7 @@ namespace anvil
       double initial_kinetic       = 0;
       double max_hourglass_ratio   = 0;
       double max_balance_error     = 0;
+      double peak_reaction         = 0;
       /** Start of the current quiet period (end criterion), -1: none; the
           first probe's displacement summed over its history rows. */
       double       quiet_since = -1;
@@ -177,6 +178,10 @@ namespace anvil
     bool update_summary(double time);
     void record_probe_summary(const std::vector<double> &probe_values, unsigned int n_values);
     void write_summary(double wall_time);
+    /** PNG plots of the histories (scripts/anvil_plot.py, copied beside
+        the executable), rank 0; a missing Python or matplotlib skips them
+        with a line. */
+    void write_plots();
 
     MPI_Comm                   mpi_communicator;
     dealii::ConditionalOStream pcout;
@@ -203,6 +208,7 @@ namespace anvil
     dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
     bool        print_wall_times;
+    bool        make_plots = false;
     unsigned int max_steps;
 
     std::vector<Body>                     bodies;
@@ -250,6 +256,12 @@ namespace anvil
     /** Per constrained dof: the reaction of the last step (for the
         trapezoidal reaction work) and v^{n-1/2} during the update. */
     std::vector<double>       constrained_reaction, constrained_velocity_old;
+    /** Per constrained dof: 3 (boundary condition) + component; and the
+        owned part of each condition's reaction force this step (the force
+        the support exerts on the body). */
+    std::vector<unsigned int> constrained_bc;
+    std::vector<double>       bc_reaction;
+    std::ofstream             reaction_file;
 
     /** Per contact pair: local index of each pair node's x dof on this rank
         if owned, else -1; and the gather/scatter buffers. */
