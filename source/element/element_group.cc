@@ -200,6 +200,13 @@ namespace anvil::Element
   {}
 
 
+  void ElementGroup::set_bulk_viscosity(const double linear, const double quadratic)
+  {
+    bulk_linear    = linear;
+    bulk_quadratic = quadratic;
+  }
+
+
   void ElementGroup::add_element(const std::array<unsigned int, 8> &node,
                                  const double (&X)[8][3],
                                  const unsigned int  cell,
@@ -269,6 +276,8 @@ namespace anvil::Element
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
     shape_factor.assign(n, 1.);
+    if (bulk_viscosity())
+      bulk_pressure.assign(n * n_qp, 0.);
     if (material.erodes())
       alive.assign(n, 1);
   }
@@ -412,6 +421,8 @@ namespace anvil::Element
             }
 
         double e_int    = 0;
+        double e_visc   = 0;
+        double dt_bulk2 = 1; // bulk viscosity's factor on the squared stable step
         double volume   = 0;
         double Jinv_c[3][3]; // centroid inverse Jacobian, for hourglass control
         double Jd_c[3][3];   // centroid velocity Jacobian, for hourglass control
@@ -440,10 +451,11 @@ namespace anvil::Element
             inv3(Jn, detn, Ji);
             // Characteristic length L_e = 2 / max_c |grad xi_c|: the
             // element's smallest height, V/A_max for a parallelepiped.
+            double grad2 = 0;
             for (unsigned int c = 0; c < 3; ++c)
-              max_grad2 = std::max(max_grad2,
-                                   Ji[c][0] * Ji[c][0] + Ji[c][1] * Ji[c][1] +
-                                     Ji[c][2] * Ji[c][2]);
+              grad2 = std::max(grad2, Ji[c][0] * Ji[c][0] + Ji[c][1] * Ji[c][1] + Ji[c][2] * Ji[c][2]);
+            max_grad2 = std::max(max_grad2, grad2);
+            double trD = 0; // volumetric rate over the last step, for bulk viscosity
             volume += detn * tables.weight[q];
 
             double *sig = &stresses[6 * (e * nq + qq)];
@@ -487,17 +499,36 @@ namespace anvil::Element
                                               dt,
                                               hst);
                     material.update_cauchy_stress(D, dt, sig, hst);
+                    trD = D[0] + D[1] + D[2];
                     // Seed Eq. (25): rho dw/dt = sigma : D, mid-step stress.
                     double mid[6];
                     for (unsigned int k = 0; k < 6; ++k)
                       mid[k] = 0.5 * (old[k] + sig[k]);
                     e_int += contract(mid, D) * dt * jxw;
                   }
+                // The stress of the forces: the material's, less the bulk
+                // viscosity pressure.
+                double sf[6];
+                std::copy(sig, sig + 6, sf);
+                if (bulk_viscosity())
+                  {
+                    const double rho_q = rho0 * reference_volume[e] / (8. * detn);
+                    const double c     = std::sqrt(M / rho_q);
+                    double       f2;
+                    const double q =
+                      bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2), rho_q, c, f2);
+                    dt_bulk2 = std::min(dt_bulk2, f2);
+                    double &q_old = bulk_pressure[e * nq + qq];
+                    e_visc += 0.5 * (q_old + q) * (-trD) * dt * jxw;
+                    q_old = q;
+                    for (unsigned int k = 0; k < 3; ++k)
+                      sf[k] -= q;
+                  }
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int c = 0; c < 3; ++c)
-                    G[a][c] = sig[a == 0 ? 0 : (a == 1 ? 3 : 5)] * Ji[c][0] +
-                              sig[a == 0 ? 3 : (a == 1 ? 1 : 4)] * Ji[c][1] +
-                              sig[a == 0 ? 5 : (a == 1 ? 4 : 2)] * Ji[c][2];
+                    G[a][c] = sf[a == 0 ? 0 : (a == 1 ? 3 : 5)] * Ji[c][0] +
+                              sf[a == 0 ? 3 : (a == 1 ? 1 : 4)] * Ji[c][1] +
+                              sf[a == 0 ? 5 : (a == 1 ? 4 : 2)] * Ji[c][2];
               }
             else
               {
@@ -544,6 +575,18 @@ namespace anvil::Element
                     for (unsigned int k = 0; k < 6; ++k)
                       mid[k] = 0.5 * (old[k] + sig[k]);
                     e_int += contract(mid, Edot) * dt * jxw;
+                    if (bulk_viscosity())
+                      {
+                        // tr D = tr(dF/dt F^{-1}) on the mid-step F.
+                        double Fh3[3][3], Fhi[3][3];
+                        for (unsigned int a = 0; a < 3; ++a)
+                          for (unsigned int b = 0; b < 3; ++b)
+                            Fh3[a][b] = Fh[3 * a + b];
+                        inv3(Fh3, det3(Fh3), Fhi);
+                        for (unsigned int a = 0; a < 3; ++a)
+                          for (unsigned int b = 0; b < 3; ++b)
+                            trD += Fd[3 * a + b] * Fhi[b][a];
+                      }
                   }
                 // First Piola-Kirchhoff P = F S, then G = P J_0^{-T}.
                 double Sm[3][3], P[3][3];
@@ -552,6 +595,28 @@ namespace anvil::Element
                   for (unsigned int b = 0; b < 3; ++b)
                     P[a][b] = Fm[3 * a] * Sm[0][b] + Fm[3 * a + 1] * Sm[1][b] +
                               Fm[3 * a + 2] * Sm[2][b];
+                if (bulk_viscosity())
+                  {
+                    // The pressure q as a Cauchy stress: P -= q J F^{-T}.
+                    double F3[3][3], Fi[3][3];
+                    for (unsigned int a = 0; a < 3; ++a)
+                      for (unsigned int b = 0; b < 3; ++b)
+                        F3[a][b] = Fm[3 * a + b];
+                    const double J = det3(F3);
+                    inv3(F3, J, Fi);
+                    const double rho_q = rho0 / J;
+                    const double c     = std::sqrt(M / rho_q);
+                    double       f2;
+                    const double q =
+                      bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2), rho_q, c, f2);
+                    dt_bulk2 = std::min(dt_bulk2, f2);
+                    double &q_old = bulk_pressure[e * nq + qq];
+                    e_visc += 0.5 * (q_old + q) * (-trD) * dt * J * jxw;
+                    q_old = q;
+                    for (unsigned int a = 0; a < 3; ++a)
+                      for (unsigned int b = 0; b < 3; ++b)
+                        P[a][b] -= q * J * Fi[b][a];
+                  }
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int c = 0; c < 3; ++c)
                     G[a][c] = P[a][0] * Jr[3 * c] + P[a][1] * Jr[3 * c + 1] +
@@ -691,7 +756,8 @@ namespace anvil::Element
             const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
             shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.);
           }
-        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M);
+        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
+        result.viscous_energy_increment += energy_weight[e] * e_visc;
 
         for (unsigned int n = 0; n < 8; ++n)
           for (unsigned int a = 0; a < 3; ++a)
@@ -777,6 +843,7 @@ namespace anvil::Element
             min_dt2 = std::min(min_dt2, r.critical_time_step * r.critical_time_step);
             result.internal_energy_increment += r.internal_energy_increment;
             result.hourglass_energy_increment += r.hourglass_energy_increment;
+            result.viscous_energy_increment += r.viscous_energy_increment;
             if (result.inverted_element < 0)
               result.inverted_element = r.inverted_element;
             continue;
@@ -805,6 +872,7 @@ namespace anvil::Element
           for (unsigned int k = 0; k < 6; ++k)
             old[k][l] = sig[k][l] = stresses[6 * el[l] + k];
         alignas(64) double e_int[W] = {};
+        alignas(64) double trD[W]   = {};
 
         if (dt > 0)
           {
@@ -892,6 +960,8 @@ namespace anvil::Element
               }
             material.update_cauchy_stress_batch(D, dt, sig, hist);
             for (unsigned int l = 0; l < W; ++l)
+              trD[l] = D[0][l] + D[1][l] + D[2][l];
+            for (unsigned int l = 0; l < W; ++l)
               {
                 double p = 0;
                 for (unsigned int k = 0; k < 3; ++k)
@@ -902,6 +972,29 @@ namespace anvil::Element
               }
           }
 
+        // max_c |grad xi_c|^2 per lane: the characteristic length.
+        alignas(64) double g2[W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            g2[l] = 0;
+            for (unsigned int c = 0; c < 3; ++c)
+              g2[l] = std::max(g2[l], Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
+                                        Ji[c][2][l] * Ji[c][2][l]);
+          }
+
+        // Bulk viscosity: the pressure q joins the normal stresses of the
+        // forces (not the stored stress); its trapezoidal work.
+        alignas(64) double qv[W] = {}, e_visc[W] = {}, dt_bulk2[W];
+        std::fill(dt_bulk2, dt_bulk2 + W, 1.);
+        if (bulk_viscosity())
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
+              qv[l]              = bulk_viscosity_pressure(
+                trD[l], 2. / std::sqrt(g2[l]), rho_c, std::sqrt(M / rho_c), dt_bulk2[l]);
+              e_visc[l] = 0.5 * (bulk_pressure[el[l]] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
+            }
+
         // Internal force f_Ia -= V sigma_ab dxi_c/dx_b dN_I/dxi_c, together
         // with the hourglass force below.
         alignas(64) double G[3][3][W];
@@ -909,9 +1002,12 @@ namespace anvil::Element
           for (unsigned int l = 0; l < W; ++l)
             {
               const double V = 8. * detn[l];
-              G[0][c][l] = -V * (sig[0][l] * Ji[c][0][l] + sig[3][l] * Ji[c][1][l] + sig[5][l] * Ji[c][2][l]);
-              G[1][c][l] = -V * (sig[3][l] * Ji[c][0][l] + sig[1][l] * Ji[c][1][l] + sig[4][l] * Ji[c][2][l]);
-              G[2][c][l] = -V * (sig[5][l] * Ji[c][0][l] + sig[4][l] * Ji[c][1][l] + sig[2][l] * Ji[c][2][l]);
+              G[0][c][l] =
+                -V * ((sig[0][l] - qv[l]) * Ji[c][0][l] + sig[3][l] * Ji[c][1][l] + sig[5][l] * Ji[c][2][l]);
+              G[1][c][l] =
+                -V * (sig[3][l] * Ji[c][0][l] + (sig[1][l] - qv[l]) * Ji[c][1][l] + sig[4][l] * Ji[c][2][l]);
+              G[2][c][l] =
+                -V * (sig[5][l] * Ji[c][0][l] + sig[4][l] * Ji[c][1][l] + (sig[2][l] - qv[l]) * Ji[c][2][l]);
             }
         alignas(64) double r[3][4][W] = {};
         alignas(64) double e_hg[W]    = {};
@@ -991,10 +1087,6 @@ namespace anvil::Element
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
-            double g2 = 0;
-            for (unsigned int c = 0; c < 3; ++c)
-              g2 = std::max(g2, Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
-                                  Ji[c][2][l] * Ji[c][2][l]);
             const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
             const double V     = 8. * detn[l];
             // Distortion factor, refreshed every few cycles (shape_factor).
@@ -1002,8 +1094,8 @@ namespace anvil::Element
               shape_factor[el[l]] =
                 std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
                                return xe[n][a][l];
-                             }) * g2 / 4.);
-            dt2[l] = 4. / g2 * shape_factor[el[l]] * rho_c / M;
+                             }) * g2[l] / 4.);
+            dt2[l] = 4. / g2[l] * shape_factor[el[l]] * rho_c / M * dt_bulk2[l];
           }
 
         // Write back and scatter the valid lanes, in element order.
@@ -1016,6 +1108,11 @@ namespace anvil::Element
             hourglass_energy[e] += e_hg[l];
             result.internal_energy_increment += energy_weight[e] * e_int[l];
             result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
+            if (bulk_viscosity())
+              {
+                bulk_pressure[e] = qv[l];
+                result.viscous_energy_increment += energy_weight[e] * e_visc[l];
+              }
             min_dt2 = std::min(min_dt2, dt2[l]);
             const unsigned int *en = &nodes[8 * e];
             for (unsigned int n = 0; n < 8; ++n)

@@ -301,7 +301,12 @@ namespace anvil::MaterialModel
                   {
                     if (r1 == r0)
                       break;
-                    const double a2 = a1 - r1 * (a1 - a0) / (r1 - r0);
+                    // A secant step is held to 0.1 in the ratio a: in the
+                    // softening range a long step can land on a second root
+                    // (the lateral directions cracked open, their stress
+                    // zero again) that the continuous path never reaches.
+                    const double a2 =
+                      a1 - std::clamp(r1 * (a1 - a0) / (r1 - r0), -0.1, 0.1);
                     a0              = a1;
                     r0              = r1;
                     a1              = a2;

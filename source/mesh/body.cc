@@ -131,6 +131,22 @@ namespace anvil
                       "V^(1/3) / 4 per unit hourglass displacement. Units: "
                       "none.");
     prm.leave_subsection();
+    prm.enter_subsection("Bulk viscosity");
+    prm.declare_entry("Linear coefficient",
+                      "0.06",
+                      Patterns::Double(0., 10.),
+                      "b_1 of the artificial bulk viscosity q = rho L (b_2^2 L "
+                      "(tr D)^2 - b_1 c tr D), applied in compression (tr D < 0) "
+                      "and booked as viscous energy (ABAQUS/Explicit's default "
+                      "0.06; LS-DYNA's Q2). 0 together with the quadratic "
+                      "coefficient: off. Units: none.");
+    prm.declare_entry("Quadratic coefficient",
+                      "1.2",
+                      Patterns::Double(0., 10.),
+                      "b_2 of the bulk viscosity: smears a shock front over a "
+                      "few elements (ABAQUS/Explicit's default 1.2; LS-DYNA's "
+                      "Q1 = 1.5). Units: none.");
+    prm.leave_subsection();
     prm.declare_entry("Initial velocity",
                       "0, 0, 0",
                       Patterns::List(Patterns::Double(), 3, 3),
@@ -243,6 +259,10 @@ namespace anvil
                                       Element::HourglassType::none);
       hourglass_coefficient = prm.get_double("Coefficient");
     }
+    prm.leave_subsection();
+    prm.enter_subsection("Bulk viscosity");
+    bulk_linear    = prm.get_double("Linear coefficient");
+    bulk_quadratic = prm.get_double("Quadratic coefficient");
     prm.leave_subsection();
     initial_velocity =
       parse_vector(prm.get("Initial velocity"), "Initial velocity");

@@ -108,7 +108,7 @@ namespace anvil
     if (!energy_file.is_open())
       {
         energy_file.open(output_directory + "/energy.csv");
-        energy_file << "time,kinetic,internal,hourglass,contact,friction,eroded,bond,"
+        energy_file << "time,kinetic,internal,hourglass,viscous,contact,friction,eroded,bond,"
                        "step_change,external_work,total,balance_error\n";
         momentum_file.open(output_directory + "/momentum.csv");
         momentum_file << "time";
@@ -130,7 +130,7 @@ namespace anvil
           }
       }
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
-                << energies.internal << ',' << energies.hourglass << ','
+                << energies.internal << ',' << energies.hourglass << ',' << energies.viscous << ','
                 << energies.contact << ',' << energies.friction << ','
                 << energies.eroded << ',' << energies.bond << ',' << energies.step_change << ','
                 << energies.external_work << ',' << energies.total() << ','

@@ -163,6 +163,9 @@ namespace anvil
                                   body.integration,
                                   body.hourglass,
                                   body.hourglass_coefficient);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (!bodies[b].is_rigid())
+        element_groups[b].set_bulk_viscosity(bodies[b].bulk_linear, bodies[b].bulk_quadratic);
     const auto &partitioner = position.get_partitioner();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())

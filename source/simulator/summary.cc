@@ -134,6 +134,7 @@ namespace anvil
           << '\n';
       out << "internal_energy_J," << energies.internal << '\n';
       out << "hourglass_energy_J," << energies.hourglass << '\n';
+      out << "viscous_energy_J," << energies.viscous << '\n';
       out << "max_hourglass_to_internal," << summary.max_hourglass_ratio << '\n';
       out << "max_balance_error," << summary.max_balance_error << '\n';
       out << "wall_time_s," << wall_time << '\n';

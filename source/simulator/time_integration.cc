@@ -44,7 +44,7 @@ namespace anvil
   {
     TimerOutput::Scope t(*timer, "element forces");
     double             dt_crit = 1e300;
-    double             d_int = 0, d_hg = 0;
+    double             d_int = 0, d_hg = 0, d_visc = 0;
     const double      *x     = position.begin();
     const double      *v     = velocity.begin();
     double            *f     = force.begin();
@@ -61,6 +61,7 @@ namespace anvil
         dt_crit          = std::min(dt_crit, r.critical_time_step);
         d_int += r.internal_energy_increment;
         d_hg += r.hourglass_energy_increment;
+        d_visc += r.viscous_energy_increment;
         d_eroded += r.eroded_energy_increment;
         if (r.inverted_element >= 0 && inverted_cell < 0)
           inverted_cell = group.element_cell_index(r.inverted_element);
@@ -68,7 +69,7 @@ namespace anvil
         if (!r.eroded_elements.empty())
           record_erosion(g, r.eroded_elements, eroded_info);
       }
-    std::vector<double> increments = {d_int, d_hg, d_eroded, double(eroded.size())};
+    std::vector<double> increments = {d_int, d_hg, d_eroded, double(eroded.size()), d_visc};
     Utilities::MPI::sum(increments, mpi_communicator, increments);
     // Reinforcement: replicated on every process, its energy counted once.
     if (!rebars.empty())
@@ -76,6 +77,7 @@ namespace anvil
     energies.internal += increments[0];
     energies.hourglass += increments[1];
     energies.eroded += increments[2];
+    energies.viscous += increments[4];
     // Erosion is rare: only then do the ranks exchange element ids, so that
     // every replicated contact pair drops the eroded elements' faces.
     if (increments[3] > 0)

@@ -13,8 +13,9 @@ trapezoidal rule; so:
 (b) with 'Maximum time step' varying the step between dt and dt/2 over 40
     steps, the balance error stays at the level of the constant-step run
     (at most twice its largest error plus 1e-6); switched between the two
-    every five steps, the scheme is parametrically unstable for some of the
-    mesh's modes, and the run stops, naming the step changes;
+    every five steps, without bulk viscosity, the scheme is parametrically
+    unstable for some of the mesh's modes, and the run stops, naming the
+    step changes;
 (c) the histories at the cut last step report its time exactly, and the
     position and velocity of the run that steps through that time, to the
     scheme's accuracy.
@@ -118,9 +119,14 @@ c.check_below("(b) largest balance error with varying steps (/ E_0)", worst_var,
 # less from step to step): its step-change energy is small, not zero.
 c.check_below("(b) step-change energy of the reference run, whose step follows the geometry (/ E_0)",
               max(abs(x) for x in ref["step_change"]) / e0, 1e-3)
+# Without bulk viscosity: its linear term (1 - 2 % of critical damping in
+# the highest modes) keeps this resonance down; with the defaults the same
+# run goes through.
 prm = write_scene(os.path.join(args.work_dir, "switching_step.prm"),
                   text=scene.format(end="3.0", max_dt=f"if(sin(t * {math.pi / (5 * 0.75 * dt_big)!r}) > 0, "
-                                    f"{dt_big!r}, {dt_big / 2!r})"))
+                                    f"{dt_big!r}, {dt_big / 2!r})") +
+                  "subsection Body bar\n  subsection Bulk viscosity\n    set Linear coefficient = 0\n"
+                  "    set Quadratic coefficient = 0\n  end\nend\n")
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 lines = [line for line in err.strip().splitlines() if line.strip()]
 print(f"  switching every five steps: exit {code}: {err.strip()[:400]}")

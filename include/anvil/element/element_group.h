@@ -71,6 +71,8 @@ namespace anvil::Element
     double internal_energy_increment = 0;
     /** Increment of hourglass energy this step. Units: J. */
     double hourglass_energy_increment = 0;
+    /** Work of the bulk viscosity pressure this step (dissipated). Units: J. */
+    double viscous_energy_increment = 0;
     /** Index of the first element whose Jacobian is not positive, or -1. */
     long int inverted_element = -1;
     /** Energy (internal and hourglass) of the owned elements eroded this
@@ -110,6 +112,17 @@ namespace anvil::Element
                      bool          owned           = true,
                      unsigned long global_id       = static_cast<unsigned long>(-1),
                      double        strength_factor = 1.);
+
+    /**
+     * Bulk viscosity (ABAQUS/Explicit's and LS-DYNA's artificial viscosity):
+     * in compression (tr D < 0) the pressure
+     *   q = rho L (b_2^2 L (tr D)^2 - b_1 c tr D)
+     * joins the stress in the nodal forces (not the material's stress), its
+     * work is reported as viscous energy, and the stable step becomes
+     * L / c (sqrt(1 + xi^2) - xi), xi = b_1 - b_2^2 L tr D / c. Zero
+     * coefficients switch it off. Call before finalize().
+     */
+    void set_bulk_viscosity(double linear, double quadratic);
 
     /** Allocate stress and history storage once all elements are added,
         and let the material set up each point's history (characteristic
@@ -233,6 +246,32 @@ namespace anvil::Element
     const Integration               integration;
     const HourglassType             hourglass;
     const double                    hourglass_coefficient;
+    /** Bulk viscosity coefficients b_1 (linear) and b_2 (quadratic). */
+    double                          bulk_linear    = 0;
+    double                          bulk_quadratic = 0;
+    bool bulk_viscosity() const
+    {
+      return bulk_linear > 0 || bulk_quadratic > 0;
+    }
+    /** The bulk viscosity pressure of the last step per point, for the
+        trapezoidal viscous work. */
+    std::vector<double> bulk_pressure;
+    /** q, and the factor (sqrt(1 + xi^2) - xi)^2 on the squared stable
+        step, at a point with volumetric rate @p trD, length @p L, density
+        @p rho and wave speed @p c. */
+    double bulk_viscosity_pressure(double trD, double L, double rho, double c, double &dt_factor2) const
+    {
+      if (!(trD < 0))
+        {
+          const double s = std::sqrt(1. + bulk_linear * bulk_linear) - bulk_linear;
+          dt_factor2     = s * s;
+          return 0.;
+        }
+      const double xi = bulk_linear - bulk_quadratic * bulk_quadratic * L * trD / c;
+      const double s  = std::sqrt(1. + xi * xi) - xi;
+      dt_factor2      = s * s;
+      return rho * L * (bulk_quadratic * bulk_quadratic * L * trD * trD - bulk_linear * c * trD);
+    }
     const unsigned int              n_qp;
     const unsigned int              n_hist;
 

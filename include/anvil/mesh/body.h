@@ -45,6 +45,8 @@ namespace anvil
     Element::Integration                       integration;
     Element::HourglassType                     hourglass;
     double                                     hourglass_coefficient;
+    /** Bulk viscosity coefficients b_1, b_2 (both 0: off). */
+    double                                     bulk_linear = 0.06, bulk_quadratic = 1.2;
     dealii::Tensor<1, 3>                       initial_velocity;
     /** Motion of a body of rigid material (unused otherwise). */
     RigidBody::Motion rigid;

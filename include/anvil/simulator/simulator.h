@@ -47,10 +47,13 @@ namespace anvil
         F^n . (v^{n+1/2} - v^{n-1/2}) (doc/theory.md, "Energy balance with
         variable steps"); negative: energy created. */
     double step_change   = 0;
+    /** Work of the bulk viscosity (dissipated). */
+    double viscous       = 0;
     double external_work = 0;
     double total() const
     {
-      return kinetic + internal + hourglass + contact + friction + eroded + bond + step_change;
+      return kinetic + internal + hourglass + viscous + contact + friction + eroded + bond +
+             step_change;
     }
   };
 
