@@ -456,6 +456,18 @@ namespace anvil::Element
               grad2 = std::max(grad2, Ji[c][0] * Ji[c][0] + Ji[c][1] * Ji[c][1] + Ji[c][2] * Ji[c][2]);
             max_grad2 = std::max(max_grad2, grad2);
             double trD = 0; // volumetric rate over the last step, for bulk viscosity
+            // Bulk viscosity at this point, density rho_q and weight jxw_now
+            // of the current configuration: q, its work, its step factor.
+            auto bulk_pressure_at = [&](const double rho_q, const double jxw_now) {
+              double       f2;
+              const double q = bulk_viscosity_pressure(
+                trD, 2. / std::sqrt(grad2), rho_q, std::sqrt(M / rho_q), f2);
+              dt_bulk2      = std::min(dt_bulk2, f2);
+              double &q_old = bulk_pressure[e * nq + qq];
+              e_visc += 0.5 * (q_old + q) * (-trD) * dt * jxw_now;
+              q_old = q;
+              return q;
+            };
             volume += detn * tables.weight[q];
 
             double *sig = &stresses[6 * (e * nq + qq)];
@@ -512,15 +524,7 @@ namespace anvil::Element
                 std::copy(sig, sig + 6, sf);
                 if (bulk_viscosity())
                   {
-                    const double rho_q = rho0 * reference_volume[e] / (8. * detn);
-                    const double c     = std::sqrt(M / rho_q);
-                    double       f2;
-                    const double q =
-                      bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2), rho_q, c, f2);
-                    dt_bulk2 = std::min(dt_bulk2, f2);
-                    double &q_old = bulk_pressure[e * nq + qq];
-                    e_visc += 0.5 * (q_old + q) * (-trD) * dt * jxw;
-                    q_old = q;
+                    const double q = bulk_pressure_at(rho0 * reference_volume[e] / (8. * detn), jxw);
                     for (unsigned int k = 0; k < 3; ++k)
                       sf[k] -= q;
                   }
@@ -604,15 +608,7 @@ namespace anvil::Element
                         F3[a][b] = Fm[3 * a + b];
                     const double J = det3(F3);
                     inv3(F3, J, Fi);
-                    const double rho_q = rho0 / J;
-                    const double c     = std::sqrt(M / rho_q);
-                    double       f2;
-                    const double q =
-                      bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2), rho_q, c, f2);
-                    dt_bulk2 = std::min(dt_bulk2, f2);
-                    double &q_old = bulk_pressure[e * nq + qq];
-                    e_visc += 0.5 * (q_old + q) * (-trD) * dt * J * jxw;
-                    q_old = q;
+                    const double q = bulk_pressure_at(rho0 / J, J * jxw);
                     for (unsigned int a = 0; a < 3; ++a)
                       for (unsigned int b = 0; b < 3; ++b)
                         P[a][b] -= q * J * Fi[b][a];
