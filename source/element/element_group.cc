@@ -406,6 +406,7 @@ namespace anvil::Element
 
     const bool can_erode       = !alive.empty();
     const bool rotate_history  = material.has_tensorial_history();
+    const bool degrading       = material.degrades() && n_hist > 0;
     for (unsigned int e = begin; e < end; ++e)
       {
         if (can_erode && !alive[e])
@@ -684,7 +685,10 @@ namespace anvil::Element
               }
             else
               {
-                k         = 0.25 * hourglass_coefficient * M * std::cbrt(volume);
+                // A damaged material's hourglass stiffness follows its
+                // elastic stiffness (secant: r = k (1 - d) q).
+                k = 0.25 * hourglass_coefficient * M * std::cbrt(volume) *
+                    (degrading ? material.stiffness_fraction(&history[n_hist * e * nq]) : 1.);
                 double *q = &hourglass_modes[12 * e];
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int j = 0; j < 4; ++j)
@@ -787,6 +791,7 @@ namespace anvil::Element
     LoopResult             result;
     double                 min_dt2 = 1e300;
     const unsigned int     n_el    = n_elements();
+    const bool             degrading = material.degrades() && n_hist > 0;
 
     for (unsigned int e0 = 0; e0 < n_el; e0 += W)
       {
@@ -1034,7 +1039,8 @@ namespace anvil::Element
                 if constexpr (H == HourglassType::viscous)
                   k[l] = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
                 else
-                  k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume);
+                  k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume) *
+                         (degrading ? material.stiffness_fraction(&history[n_hist * el[l]]) : 1.);
               }
             for (unsigned int a = 0; a < 3; ++a)
               for (unsigned int j = 0; j < 4; ++j)

@@ -222,6 +222,20 @@ namespace anvil::MaterialModel
       return par.erosion;
     }
     bool point_failed(const double *history) const override;
+    bool degrades() const override
+    {
+      return true;
+    }
+    /** (1 - d_t)(1 - d_c), the stiffness without recovery: it never
+        grows (the stiffness recovery depends on the stress state, and a
+        hourglass spring whose stiffness came back while it is stretched
+        would return more work than it took), and at least 0.1 (a fully
+        cracked one-point element must keep some hourglass resistance, or
+        it collapses in its hourglass modes). */
+    double stiffness_fraction(const double *history) const override
+    {
+      return std::max((1. - history[i_tensile_damage]) * (1. - history[i_compressive_damage]), 0.1);
+    }
 
     bool has_tensorial_history() const override
     {

@@ -148,6 +148,24 @@ namespace anvil
         return false;
       }
 
+      /** Whether the point's elastic stiffness can fall below the
+          initial one (damage), so that stiffness hourglass control must
+          follow it (asked once per element group). */
+      virtual bool degrades() const
+      {
+        return false;
+      }
+
+      /** The point's current elastic stiffness over the initial one, in
+          [0, 1] (1 - d for a damaged material): the factor on the
+          stiffness hourglass control of its element, which otherwise
+          gives a cracked element the strength of an intact one. */
+      virtual double stiffness_fraction(const double *history) const
+      {
+        (void)history;
+        return 1.;
+      }
+
       /** Whether a body of this material is rigid: it gets no element
           forces, and its nodes follow its prescribed rigid motion. */
       virtual bool is_rigid() const
