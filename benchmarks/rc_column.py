@@ -1,0 +1,99 @@
+"""Wall time of the seed's RC column (prm/rc_column_impact), and its mesh study.
+
+Cost: the production scene (10 mm, 21,600 elements, bond-slip bars) for a
+shortened end time on 1 and 2 MPI processes; prints steps, wall time,
+nanoseconds per element-cycle (wall time / (elements x steps), bars and
+contact included), the share of each TimerOutput section, and the wall
+time extrapolated to 150 ms at the measured step.
+
+Mesh study (--mesh-study): the bond-slip column at 20, 15 and 10 mm to the
+end criterion; prints peak and residual displacement of the impact point
+and of the far face, peak hammer force, hourglass share, and each
+quantity's change from the previous mesh.
+
+Usage: python3 benchmarks/rc_column.py ANVIL [END_TIME_S] [--mesh-study]
+(default end time 0.005 s). Figures, never asserts: timings on shared
+machines are noisy; compare the ratios within one run.
+"""
+import csv
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+anvil = os.path.abspath(sys.argv[1])
+args = [a for a in sys.argv[2:] if not a.startswith("--")]
+end_time = float(args[0]) if args else 0.005
+top = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+scene = os.path.join(top, "prm", "rc_column_impact", "rc_column_impact.prm")
+work = tempfile.mkdtemp()
+env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run(name, np, text):
+    prm = os.path.join(work, name + ".prm")
+    with open(prm, "w") as f:
+        f.write(f"include {scene}\n{text}")
+    cmd = ([anvil, prm] if np == 1 else ["mpirun", "-np", str(np), "--oversubscribe", anvil, prm])
+    r = subprocess.run(cmd, cwd=work, capture_output=True, text=True, env=env)
+    if r.returncode != 0:
+        sys.exit(f"{name}: anvil failed: {r.stderr.strip()[-300:]}")
+    out = os.path.join(work, "output", name)
+    with open(os.path.join(out, "summary.csv")) as f:
+        s = {row["quantity"]: float(row["value"]) for row in csv.DictReader(f)}
+    sections = dict((m.group(1).strip(), float(m.group(2)))
+                    for m in re.finditer(r"\|\s*([a-z ]+?)\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s", r.stdout))
+    return s, sections, out
+
+
+if "--mesh-study" not in sys.argv:
+    print(f"rc_column: production scene (10 mm) to {1e3 * end_time:g} ms")
+    for np in (1, 2):
+        s, sections, _ = run(f"cost_np{np}", np, f"""
+subsection Simulation
+  set End time = {end_time!r}
+  set End kinetic energy fraction = 0
+  set Output interval = 0
+  set Plots = false
+end
+""")
+        ns = 1e9 * s["wall_time_s"] / (s["elements"] * s["steps"])
+        total = sum(v for k, v in sections.items() if k not in ("setup",))
+        share = ", ".join(f"{k} {100 * v / total:.0f} %" for k, v in sorted(sections.items(), key=lambda kv: -kv[1])
+                          if k != "setup")
+        print(f"  np = {np}: {int(s['steps'])} steps, {s['wall_time_s']:.1f} s wall, {ns:.0f} ns per element-cycle "
+              f"(wall x processes: {np * ns:.0f}); 150 ms at this step: "
+              f"{s['wall_time_s'] * 0.150 / end_time / 60:.1f} min; {share}")
+else:
+    print("rc_column: mesh study, bond-slip column to the end criterion")
+    previous = None
+    for h, n, bar in ((20, (6, 6, 75), 0.02), (15, (8, 8, 100), 0.015), (10, (12, 12, 150), 0.01)):
+        s, _, out = run(f"mesh_{h}mm", 2, f"""
+subsection Simulation
+  set Output interval = 0
+  set Plots = false
+end
+subsection Body column
+  subsection Mesh
+    set Subdivisions = {n[0]}, {n[1]}, {n[2]}
+  end
+end
+subsection Rebar longitudinal
+  set Element length = {bar}
+end
+subsection Rebar stirrups
+  set Element length = {bar}
+end
+""")
+        with open(os.path.join(out, "probe_back_face.csv")) as f:
+            back = [float(r["ux"]) for r in csv.DictReader(f)]
+        row = {"peak": s["peak_displacement_m"], "residual": s["residual_displacement_m"],
+               "far face": -min(back), "force": s["peak_contact_force_N"]}
+        change = ("" if previous is None else ", change: " +
+                  ", ".join(f"{k} {100 * (row[k] / previous[k] - 1):+.1f} %" for k in row))
+        print(f"  {h} mm ({int(s['elements'])} elements, {s['wall_time_s']:.0f} s): impact point peak "
+              f"{1e3 * row['peak']:.2f} mm, residual {1e3 * row['residual']:.2f} mm; far face peak "
+              f"{1e3 * row['far face']:.2f} mm; peak force {1e-3 * row['force']:.1f} kN; hourglass/internal "
+              f"{s['hourglass_energy_J'] / s['internal_energy_J']:.3f}{change}")
+        previous = row
