@@ -8,6 +8,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from anvil_vtu import read_vtu  # noqa: E402
+
 
 class Checker:
     """Collects checks; exit status 1 if any failed."""
@@ -121,35 +124,9 @@ def read_csv(path):
 
 
 def read_vtu_cells(path):
-    """Cell values of the VTU file deal.II's DataOut writes (zlib-compressed
-    binary, UInt32 headers): each cell is a patch of its own vertices, so a
-    point-data array holds every cell's value once per vertex; returns
-    {name: [value per cell]} for the scalar arrays."""
-    import base64
-    import struct
-    import xml.etree.ElementTree as ET
-    import zlib
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-    n_points, n_cells = int(piece.get("NumberOfPoints")), int(piece.get("NumberOfCells"))
-    sizes = {"Float32": ("f", 4), "Float64": ("d", 8), "Int32": ("i", 4), "UInt8": ("B", 1)}
-    cells = {}
-    for array in piece.find("PointData"):
-        if int(array.get("NumberOfComponents", "1")) != 1:
-            continue
-        text = array.text.strip()
-        n_blocks = struct.unpack("<I", base64.b64decode(text[:8])[:4])[0]
-        header_chars = 4 * ((4 * (3 + n_blocks) + 2) // 3)
-        header = struct.unpack(f"<{3 + n_blocks}I", base64.b64decode(text[:header_chars]))
-        data = base64.b64decode(text[header_chars:])
-        raw, at = b"", 0
-        for size in header[3:]:
-            raw += zlib.decompress(data[at:at + size])
-            at += size
-        code, width = sizes[array.get("type")]
-        values = struct.unpack(f"<{len(raw) // width}{code}", raw)
-        per_cell = n_points // n_cells
-        cells[array.get("Name")] = list(values[::per_cell])
-    return cells
+    """Cell values of a VTU file of Anvil's: {name: [value per cell]} for
+    the scalar arrays (scripts/anvil_vtu.py)."""
+    return read_vtu(path)[1]
 
 
 def max_relative_difference(a, b):
