@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <set>
 
@@ -366,15 +367,32 @@ namespace anvil
         {
           const std::string expression = prm.get("Maximum time step");
           max_dt_function = std::make_unique<dealii::FunctionParser<1>>(1);
+          // muparser reads 'a, b' as a list of two results: a comma outside
+          // parentheses is a typing slip ('1,2' for 1.2), not an expression.
+          int depth = 0;
+          for (const char ch : expression)
+            {
+              depth += (ch == '(') - (ch == ')');
+              if (ch == ',' && depth == 0)
+                throw InputError("entry 'Simulation/Maximum time step': '" + expression.substr(0, 60) +
+                                 "' has a comma outside parentheses; give one number or one expression "
+                                 "in t (for example 1.2e-7 or if(t < 0.01, 1e-7, 1e-6))");
+            }
+          // deal.II's parser writes muparser's diagnosis to std::cerr before
+          // it throws: keep it off the screen (the error is one line).
+          std::ostringstream quiet;
+          auto *const        cerr_buffer = std::cerr.rdbuf(quiet.rdbuf());
           try
             {
               max_dt_function->initialize("t", expression, {});
               const double probe = max_dt_function->value(dealii::Point<1>(0.));
               if (!std::isfinite(probe))
                 throw std::runtime_error("not finite at t = 0");
+              std::cerr.rdbuf(cerr_buffer);
             }
           catch (...)
             {
+              std::cerr.rdbuf(cerr_buffer);
               throw InputError("entry 'Simulation/Maximum time step': '" +
                                expression.substr(0, 60) +
                                "' is not a number or an expression in t (muparser syntax, "

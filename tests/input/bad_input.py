@@ -95,6 +95,19 @@ lines = [l for l in err.splitlines() if l.strip()]
 print(f"    unknown_body: {lines[-1] if lines else ''}")
 c.check_true("unknown body: exit 2 with one line naming it", code == 2 and len(lines) == 1 and "blok" in lines[0])
 
+# 'Maximum time step' with a comma outside parentheses ('1,2' for 1.2), and
+# one that is no expression.
+for name, value, words in (("max_dt_comma", "1,2", ["Maximum time step", "comma"]),
+                           ("max_dt_garbage", "1e-7 +* t", ["Maximum time step"])):
+    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
+                      text=block.format(mesh="", nu="0.3", extra="") +
+                      f"subsection Simulation\n  set Maximum time step = {value}\nend\n")
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+    lines = [l for l in err.splitlines() if l.strip()]
+    print(f"    {name}: {lines[-1] if lines else ''}")
+    c.check_true(f"{name}: exit 2 with one line naming the entry", code == 2 and len(lines) == 1 and
+                 all(w in lines[0] for w in words))
+
 # Includes: a scene that includes itself through another file, and an
 # include that names no file; resolved relative to the including file, so
 # a scene in another folder includes its neighbour by its bare name.
