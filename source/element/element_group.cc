@@ -202,8 +202,10 @@ namespace anvil::Element
 
   void ElementGroup::set_bulk_viscosity(const double linear, const double quadratic)
   {
-    bulk_linear    = linear;
-    bulk_quadratic = quadratic;
+    bulk_linear                     = linear;
+    bulk_quadratic                  = quadratic;
+    const double s                  = std::sqrt(1. + linear * linear) - linear;
+    bulk_dt_factor2_expansion       = s * s;
   }
 
 

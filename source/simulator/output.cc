@@ -82,7 +82,7 @@ namespace anvil
       Utilities::MPI::sum(reactions, mpi_communicator, reactions);
     if (!root)
       return;
-    record_probe_summary(probe_values, n_values);
+    record_probe_summary(probe_values);
     if (!reactions.empty())
       {
         if (!reaction_file.is_open())

@@ -389,6 +389,13 @@ namespace anvil
               if (!std::isfinite(probe))
                 throw std::runtime_error("not finite at t = 0");
               std::cerr.rdbuf(cerr_buffer);
+              // A constant (the default 0 among them) needs no parser in the
+              // explicit step.
+              if (expression.find('t') == std::string::npos)
+                {
+                  max_dt_constant = probe;
+                  max_dt_function.reset();
+                }
             }
           catch (...)
             {

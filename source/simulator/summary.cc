@@ -76,10 +76,8 @@ namespace anvil
 
 
   // At each history row, on rank 0: the first probe's displacement.
-  void Simulator::record_probe_summary(const std::vector<double> &probe_values,
-                                       const unsigned int         n_values)
+  void Simulator::record_probe_summary(const std::vector<double> &probe_values)
   {
-    (void)n_values;
     if (probes.empty())
       return;
     const double u = std::sqrt(probe_values[0] * probe_values[0] + probe_values[1] * probe_values[1] +
@@ -145,7 +143,8 @@ namespace anvil
       if (!out)
         throw std::runtime_error("could not write " + name + ".tmp (disk full or no permission)");
     }
-    std::rename((name + ".tmp").c_str(), name.c_str());
+    if (std::rename((name + ".tmp").c_str(), name.c_str()) != 0)
+      throw std::runtime_error("could not rename " + name + ".tmp to " + name);
   }
 
 

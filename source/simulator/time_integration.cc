@@ -676,9 +676,10 @@ namespace anvil
             1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
             critical_dt;
         current_dt = last ? dt_previous : std::min(time_step_factor * dt_stable, end_time - time);
-        if (!last && max_dt_function)
+        if (!last)
           {
-            const double dt_max = max_dt_function->value(Point<1>(time));
+            const double dt_max =
+              max_dt_function ? max_dt_function->value(Point<1>(time)) : max_dt_constant;
             if (dt_max > 0 && dt_max < current_dt)
               current_dt = dt_max;
           }

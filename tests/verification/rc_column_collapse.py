@@ -79,20 +79,6 @@ subsection Body column
     end
   end
 end
-subsection Rebar longitudinal
-  subsection Material
-    subsection plastic kinematic
-      set Cowper-Symonds C = 1e30
-    end
-  end
-end
-subsection Rebar stirrups
-  subsection Material
-    subsection plastic kinematic
-      set Cowper-Symonds C = 1e30
-    end
-  end
-end
 subsection Body hammer
   set Initial velocity = -0.5, 0, 0
   subsection Rigid body
@@ -100,7 +86,14 @@ subsection Body hammer
     set Shape point = 0.110001, 0, 0.5
   end
 end
-""")
+""" + "".join(f"""subsection Rebar {layout}
+  subsection Material
+    subsection plastic kinematic
+      set Cowper-Symonds C = 1e30
+    end
+  end
+end
+""" for layout in ("longitudinal", "stirrups")))
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if not c.check_true("the push runs to its end", code == 0, err.strip()[-300:]):
     c.finish()

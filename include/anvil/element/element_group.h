@@ -249,6 +249,8 @@ namespace anvil::Element
     /** Bulk viscosity coefficients b_1 (linear) and b_2 (quadratic). */
     double                          bulk_linear    = 0;
     double                          bulk_quadratic = 0;
+    /** (sqrt(1 + b_1^2) - b_1)^2: the step factor where tr D >= 0. */
+    double                          bulk_dt_factor2_expansion = 1;
     bool bulk_viscosity() const
     {
       return bulk_linear > 0 || bulk_quadratic > 0;
@@ -263,8 +265,7 @@ namespace anvil::Element
     {
       if (!(trD < 0))
         {
-          const double s = std::sqrt(1. + bulk_linear * bulk_linear) - bulk_linear;
-          dt_factor2     = s * s;
+          dt_factor2 = bulk_dt_factor2_expansion;
           return 0.;
         }
       const double xi = bulk_linear - bulk_quadratic * bulk_quadratic * L * trD / c;

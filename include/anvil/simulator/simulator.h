@@ -179,7 +179,7 @@ namespace anvil
     /** Per step: the summary figures and the end criterion; true when the
         criterion says the run ends now. */
     bool update_summary(double time);
-    void record_probe_summary(const std::vector<double> &probe_values, unsigned int n_values);
+    void record_probe_summary(const std::vector<double> &probe_values);
     void write_summary(double wall_time);
     /** PNG plots of the histories (scripts/anvil_plot.py, copied beside
         the executable), rank 0; a missing Python or matplotlib skips them
@@ -205,7 +205,9 @@ namespace anvil
         end_kinetic_fraction E_0 for end_quiet_time (0: off). */
     double      end_kinetic_fraction = 0;
     double      end_quiet_time       = 0.01;
-    /** 'Maximum time step' as a function of t (<= 0: no bound). */
+    /** 'Maximum time step' (<= 0: no bound): a constant, or a function of
+        t when the entry names t. */
+    double                                     max_dt_constant = 0;
     std::unique_ptr<dealii::FunctionParser<1>> max_dt_function;
     /** Gravitational acceleration of the scene (body force rho g). */
     dealii::Tensor<1, 3> gravity;
