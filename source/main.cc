@@ -1,9 +1,10 @@
 /**
  * @file
- * anvil SCENE.prm | --help | --print-parameters
+ * anvil SCENE.prm [--set PATH=VALUE]... | --study STUDY.prm | --help | --print-parameters
  */
 #include <anvil/material_model/material_point_driver.h>
 #include <anvil/simulator/simulator.h>
+#include <anvil/study/study.h>
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/mpi.h>
@@ -14,6 +15,8 @@ namespace
 {
   const char *usage =
     "Usage: anvil SCENE.prm            run a scene (mpirun -np N anvil SCENE.prm runs it distributed)\n"
+    "       anvil SCENE.prm --set 'SUBSECTION/.../ENTRY=VALUE' ...   run a scene with entries changed\n"
+    "       anvil --study STUDY.prm [--jobs N]   run a parameter study (its runs, study.csv, plots)\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
@@ -24,12 +27,17 @@ namespace
 
 int main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const std::vector<std::string> args(argv + 1, argv + argc);
 
-  const bool check_only = args.size() == 2 && args[0] == "--check";
-  const bool driver     = args.size() == 2 && args[0] == "--material-point";
+  // A study launches its runs as processes of their own (each possibly an
+  // MPI job): it never initialises MPI itself, so the runs' mpirun starts
+  // from a clean environment.
+  if (!args.empty() && args[0] == "--study")
+    return anvil::Study::main(args);
+
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+
   if (args.size() == 2 && args[0] == "--print-parameters" && args[1] == "--material-point")
     {
       if (root)
@@ -42,28 +50,57 @@ int main(int argc, char **argv)
         }
       return 0;
     }
-  if (args.size() != 1 && !check_only && !driver)
-    {
-      if (root)
-        std::cerr << "anvil: error: expected exactly one argument\n" << usage;
-      return 2;
-    }
-  if (args[0] == "--help" || args[0] == "-h")
+  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
     {
       if (root)
         std::cout << usage;
       return 0;
     }
-  if (args[0] == "--print-parameters")
+  if (args.size() == 1 && args[0] == "--print-parameters")
     {
       if (root)
         anvil::Simulator::print_parameters(std::cout);
       return 0;
     }
-  if (!check_only && !driver && !args[0].empty() && args[0][0] == '-')
+
+  // [--check | --material-point] FILE [--set PATH=VALUE]...
+  bool                     check_only = false, driver = false;
+  std::string              file;
+  std::vector<std::string> overrides;
+  for (unsigned int i = 0; i < args.size(); ++i)
+    {
+      const std::string &a = args[i];
+      std::string        error;
+      if (a == "--check" && i == 0)
+        check_only = true;
+      else if (a == "--material-point" && i == 0)
+        driver = true;
+      else if (a == "--set")
+        {
+          if (i + 1 == args.size())
+            error = "option '--set' needs SUBSECTION/.../ENTRY=VALUE";
+          else
+            overrides.push_back(args[++i]);
+        }
+      else if (!a.empty() && a[0] == '-')
+        error = "unknown option '" + a + "'";
+      else if (file.empty())
+        file = a;
+      else
+        error = "expected one scene file, got '" + file + "' and '" + a + "'";
+      if (!error.empty())
+        {
+          if (root)
+            std::cerr << "anvil: error: " << error << "\n" << usage;
+          return 2;
+        }
+    }
+  if (file.empty() || (driver && !overrides.empty()))
     {
       if (root)
-        std::cerr << "anvil: error: unknown option '" << args[0] << "'\n" << usage;
+        std::cerr << "anvil: error: " << (file.empty() ? "no scene file given" : "--set applies to scenes, not to --material-point")
+                  << "\n"
+                  << usage;
       return 2;
     }
 
@@ -78,12 +115,12 @@ int main(int argc, char **argv)
           // One material point: rank 0 alone does the work.
           if (root)
             {
-              anvil::MaterialModel::MaterialPointDriver d(args.back());
+              anvil::MaterialModel::MaterialPointDriver d(file);
               std::cout << "anvil: material point written to " << d.run() << std::endl;
             }
           return 0;
         }
-      anvil::Simulator simulator(args.back(), MPI_COMM_WORLD);
+      anvil::Simulator simulator(file, MPI_COMM_WORLD, overrides);
       if (check_only)
         simulator.check();
       else

@@ -31,6 +31,14 @@ namespace anvil
       return dealii::Utilities::split_string_list(list, ',');
     }
 
+    std::string join(const std::vector<std::string> &list)
+    {
+      std::string result;
+      for (const auto &s : list)
+        result += (result.empty() ? "" : ", ") + s;
+      return result;
+    }
+
     void declare_lists(dealii::ParameterHandler &prm)
     {
       using namespace dealii;
@@ -126,7 +134,7 @@ namespace anvil
 
     // deal.II's messages name 'Line <N> of file <F>' of the expanded text:
     // name the real file and line instead.
-    std::string locate(std::string msg, const ExpandedScene &scene)
+    std::string locate(std::string msg, const ExpandedScene &scene, const std::string &file)
     {
       const std::string tag = "Line <";
       const auto        at  = msg.find(tag);
@@ -134,14 +142,22 @@ namespace anvil
         return msg;
       const auto close = msg.find('>', at);
       const auto of    = msg.find("of file <", close);
-      const auto end   = of == std::string::npos ? std::string::npos : msg.find('>', of + 9);
-      if (close == std::string::npos || end == std::string::npos)
+      if (close == std::string::npos || of == std::string::npos)
+        return msg;
+      // Some of deal.II's messages close the file name with '>', some
+      // ("no such subsection") do not.
+      auto end = of + 9 + file.size() - 1;
+      if (msg.compare(of + 9, file.size(), file) != 0)
+        end = msg.find('>', of + 9);
+      else if (end + 1 < msg.size() && msg[end + 1] == '>')
+        ++end;
+      if (end == std::string::npos)
         return msg;
       const int n = std::atoi(msg.substr(at + tag.size(), close - at - tag.size()).c_str());
       if (n < 1 || n > int(scene.origin.size()))
         return msg;
-      const auto &[file, line] = scene.origin[n - 1];
-      return msg.substr(0, at) + "line " + std::to_string(line) + " of " + file + msg.substr(end + 1);
+      const auto &[origin_file, line] = scene.origin[n - 1];
+      return msg.substr(0, at) + "line " + std::to_string(line) + " of " + origin_file + msg.substr(end + 1);
     }
   } // namespace
 
@@ -300,17 +316,85 @@ namespace anvil
   }
 
 
-  void Simulator::parse_parameters(const std::string &parameter_file)
+  // @sect3{Overrides}
+  //
+  // 'anvil SCENE.prm --set "Body hammer/Rigid body/Mass=220"' (and every run
+  // of a study) changes entries without editing the scene: each override
+  // becomes the lines 'subsection ...', 'set ENTRY = VALUE', 'end' after the
+  // scene's own text, where deal.II's later 'set' wins. Its entry is checked
+  // like the scene's, so a misspelled path is an input error naming it.
+  std::vector<std::pair<std::string, std::string>>
+  Simulator::split_overrides(const std::vector<std::string> &overrides)
+  {
+    std::vector<std::pair<std::string, std::string>> result;
+    for (const auto &o : overrides)
+      {
+        const auto equal = o.find('=');
+        if (equal == std::string::npos || equal == 0)
+          throw InputError("--set '" + o.substr(0, 100) +
+                           "': expected SUBSECTION/.../ENTRY=VALUE, for example "
+                           "'Body hammer/Rigid body/Mass=220'");
+        std::string path = o.substr(0, equal), value = o.substr(equal + 1);
+        for (auto *s : {&path, &value})
+          {
+            s->erase(0, s->find_first_not_of(" \t"));
+            s->erase(s->find_last_not_of(" \t") + 1);
+          }
+        if (path.empty() || path.back() == '/' || path.front() == '/' ||
+            path.find("//") != std::string::npos)
+          throw InputError("--set '" + o.substr(0, 100) + "': the entry path '" + path +
+                           "' has an empty subsection or entry name");
+        result.emplace_back(path, value);
+      }
+    return result;
+  }
+
+
+  namespace
+  {
+    void append_overrides(const std::vector<std::pair<std::string, std::string>> &overrides,
+                          ExpandedScene                                          &scene)
+    {
+      for (const auto &[path, value] : overrides)
+        {
+          const auto   parts = dealii::Utilities::split_string_list(path, '/');
+          const std::string origin = "the override '" + path + "=" + value.substr(0, 60) + "'";
+          auto add = [&](const std::string &line) {
+            scene.text += line + '\n';
+            scene.origin.emplace_back(origin, 1);
+          };
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            add("subsection " + parts[i]);
+          add("set " + parts.back() + " = " + value);
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            add("end");
+        }
+    }
+  } // namespace
+
+
+  void Simulator::validate_scene(const std::string              &parameter_file,
+                                 const std::vector<std::string> &overrides)
+  {
+    dealii::ParameterHandler prm;
+    read_scene(parameter_file, overrides, prm);
+  }
+
+
+  std::vector<std::vector<std::string>>
+  Simulator::read_scene(const std::string              &parameter_file,
+                        const std::vector<std::string> &overrides,
+                        dealii::ParameterHandler       &prm)
   {
     if (!std::filesystem::exists(parameter_file))
       throw InputError(parameter_file + ": the scene file does not exist");
-    scene_file = parameter_file;
 
     ExpandedScene expanded;
     {
       std::vector<std::string> stack;
       expand(parameter_file, stack, expanded);
     }
+    append_overrides(split_overrides(overrides), expanded);
     auto parse = [&](dealii::ParameterHandler &prm, const bool skip) {
       try
         {
@@ -319,7 +403,7 @@ namespace anvil
         }
       catch (const dealii::ExceptionBase &e)
         {
-          std::string msg = locate(one_line_message(e), expanded);
+          std::string msg = locate(one_line_message(e), expanded, parameter_file);
           if (msg.find("No entry with name") != std::string::npos ||
               msg.find("no subsection") != std::string::npos)
             msg += " ('anvil --print-parameters' lists every entry)";
@@ -345,9 +429,23 @@ namespace anvil
       throw InputError(parameter_file + ": entry 'Bodies' names no body");
 
     // Pass 2: everything, strictly.
-    dealii::ParameterHandler prm;
     declare_parameters(prm, body_names, bc_names, pair_names, probe_names, rebar_names);
     parse(prm, false);
+    return {body_names, bc_names, pair_names, probe_names, rebar_names};
+  }
+
+
+  void Simulator::parse_parameters(const std::string              &parameter_file,
+                                   const std::vector<std::string> &overrides)
+  {
+    scene_file = parameter_file;
+    dealii::ParameterHandler prm;
+    const auto               lists       = read_scene(parameter_file, overrides, prm);
+    const auto              &body_names  = lists[0];
+    const auto              &bc_names    = lists[1];
+    const auto              &pair_names  = lists[2];
+    const auto              &probe_names = lists[3];
+    const auto              &rebar_names = lists[4];
 
     const std::string dir =
       std::filesystem::path(parameter_file).parent_path().string();
@@ -433,7 +531,7 @@ namespace anvil
           if (std::find(body_names.begin(), body_names.end(), name) ==
               body_names.end())
             throw InputError("subsection '" + where + "': body '" + name +
-                             "' is not in 'Bodies' (" + lists.get("Bodies") +
+                             "' is not in 'Bodies' (" + join(body_names) +
                              ")");
         };
         boundary_conditions.resize(bc_names.size());

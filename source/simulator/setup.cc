@@ -22,14 +22,16 @@ namespace anvil
 {
   using namespace dealii;
 
-  Simulator::Simulator(const std::string &parameter_file, MPI_Comm comm)
+  Simulator::Simulator(const std::string              &parameter_file,
+                       MPI_Comm                         comm,
+                       const std::vector<std::string> &overrides)
     : mpi_communicator(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , triangulation(comm)
     , fe(FE_Q<3>(1), 3)
     , dof_handler(triangulation)
   {
-    parse_parameters(parameter_file);
+    parse_parameters(parameter_file, overrides);
   }
 
 

@@ -6,6 +6,7 @@
  * and the end criterion of an impact that is over.
  */
 #include <anvil/simulator/simulator.h>
+#include <anvil/utilities/python_script.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -152,27 +153,9 @@ namespace anvil
   {
     if (!make_plots || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
-    std::error_code             ec;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    const std::filesystem::path script = exe.parent_path() / "anvil_plot.py";
-    if (ec || !std::filesystem::exists(script))
-      {
-        pcout << "  plots skipped: anvil_plot.py is not beside the executable" << std::endl;
-        return;
-      }
-    // Debian's interpreter first: it sees Debian's python3-matplotlib.
-    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string command = python + " '" + script.string() + "' '" + output_directory +
-                                "' > '" + output_directory + "/plots.log' 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream log(output_directory + "/plots.log");
-    std::string   line, last;
-    while (std::getline(log, line))
-      if (!line.empty())
-        last = line;
-    if (status == 0)
-      pcout << "  " << last << std::endl;
-    else
-      pcout << "  plots skipped: " << (last.empty() ? "the plotting script failed" : last) << std::endl;
+    std::string message;
+    const bool  ok = run_python_script("anvil_plot.py", "'" + output_directory + "'",
+                                      output_directory + "/plots.log", message);
+    pcout << "  " << (ok ? "" : "plots skipped: ") << message << std::endl;
   }
 } // namespace anvil

@@ -80,7 +80,22 @@ namespace anvil
      * Read the scene @p parameter_file. Throws InputError with a one-line
      * message on bad input.
      */
-    Simulator(const std::string &parameter_file, MPI_Comm comm);
+    Simulator(const std::string              &parameter_file,
+              MPI_Comm                         comm,
+              const std::vector<std::string> &overrides = {});
+
+    /**
+     * Parse the scene @p parameter_file with @p overrides ("SUBSECTION/.../
+     * ENTRY=VALUE", applied after the file) against the full declaration,
+     * without MPI, a mesh or any output: throws InputError with one line
+     * naming the file, entry or override that is wrong.
+     */
+    static void validate_scene(const std::string              &parameter_file,
+                               const std::vector<std::string> &overrides);
+
+    /** Split "PATH=VALUE" overrides; InputError for a malformed one. */
+    static std::vector<std::pair<std::string, std::string>>
+    split_overrides(const std::vector<std::string> &overrides);
 
     /** Print the whole parameter tree with documentation (.prm syntax). */
     static void print_parameters(std::ostream &out);
@@ -106,7 +121,15 @@ namespace anvil
                                    const std::vector<std::string>   &pairs,
                                    const std::vector<std::string>   &probes,
                                    const std::vector<std::string>   &rebars = {});
-    void        parse_parameters(const std::string &parameter_file);
+    /** Expand the scene and its overrides and parse them strictly into
+        @p prm; returns the lists of names (bodies, boundary conditions,
+        contact pairs, probes, rebars). */
+    static std::vector<std::vector<std::string>>
+                read_scene(const std::string              &parameter_file,
+                           const std::vector<std::string> &overrides,
+                           dealii::ParameterHandler       &prm);
+    void        parse_parameters(const std::string              &parameter_file,
+                                 const std::vector<std::string> &overrides);
 
     // Setup (source/simulator/setup.cc)
     void make_grid();
