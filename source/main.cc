@@ -17,6 +17,7 @@ namespace
     "Usage: anvil SCENE.prm            run a scene (mpirun -np N anvil SCENE.prm runs it distributed)\n"
     "       anvil SCENE.prm --set 'SUBSECTION/.../ENTRY=VALUE' ...   run a scene with entries changed\n"
     "       anvil --study STUDY.prm [--jobs N]   run a parameter study (its runs, study.csv, plots)\n"
+    "       anvil --study STUDY.prm --check      check a study file and every run's entries; run nothing\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"

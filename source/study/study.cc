@@ -625,10 +625,13 @@ namespace anvil
   int Study::main(const std::vector<std::string> &args)
   {
     std::string  study_file;
-    unsigned int jobs = 0;
+    unsigned int jobs       = 0;
+    bool         check_only = false;
     for (unsigned int i = 1; i < args.size(); ++i)
       {
-        if (args[i] == "--jobs" && i + 1 < args.size())
+        if (args[i] == "--check")
+          check_only = true;
+        else if (args[i] == "--jobs" && i + 1 < args.size())
           {
             const std::string n = args[++i];
             if (n.empty() || n.find_first_not_of("0123456789") != std::string::npos || std::stoul(n) == 0 ||
@@ -644,7 +647,7 @@ namespace anvil
         else
           {
             std::cerr << "anvil: error: --study: unexpected argument '" << args[i]
-                      << "' (usage: anvil --study STUDY.prm [--jobs N])" << std::endl;
+                      << "' (usage: anvil --study STUDY.prm [--jobs N] [--check])" << std::endl;
             return 2;
           }
       }
@@ -664,6 +667,13 @@ namespace anvil
     try
       {
         Study study(study_file);
+        if (check_only)
+          {
+            study.validate();
+            std::cout << "study " << study.name << ": " << study.runs.size() << " runs of "
+                      << study.base_scene << " parse" << std::endl;
+            return 0;
+          }
         return study.run(jobs);
       }
     catch (const InputError &e)

@@ -1,4 +1,5 @@
-"""Every scene in prm/ parses and sets up (anvil --check): examples cannot
+"""Every scene in prm/ parses and sets up (anvil --check), every study
+file and each of its runs parses (anvil --study --check): examples cannot
 rot unnoticed."""
 import glob
 import os
@@ -10,5 +11,9 @@ scenes = sorted(glob.glob(os.path.join(args.source_dir, "prm/*/*.prm")))
 c.check_true("there are scenes", len(scenes) > 0, f"{len(scenes)} found")
 for prm in scenes:
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+    c.check_true(os.path.relpath(prm, args.source_dir), code == 0, (out + err).strip().splitlines()[-1] if (out + err).strip() else "")
+studies = sorted(glob.glob(os.path.join(args.source_dir, "prm/*/studies/*.prm")))
+for prm in studies:
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--study", "--check"])
     c.check_true(os.path.relpath(prm, args.source_dir), code == 0, (out + err).strip().splitlines()[-1] if (out + err).strip() else "")
 c.finish()
