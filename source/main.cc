@@ -6,9 +6,11 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/study/study.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/output_files.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <csignal>
 #include <iostream>
 
 namespace
@@ -23,7 +25,7 @@ namespace
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
     "       anvil --print-parameters --material-point   the same for driver files\n"
     "       anvil --help               this text\n"
-    "Exit status: 0 success, 2 bad input, 3 numerical failure, 1 other errors.\n";
+    "Exit status: 0 success, 2 bad input, 3 numerical failure, 4 results could not be written, 1 other errors.\n";
 }
 
 int main(int argc, char **argv)
@@ -36,6 +38,9 @@ int main(int argc, char **argv)
   if (!args.empty() && args[0] == "--study")
     return anvil::Study::main(args);
 
+  // Past a file-size limit a write fails (and is reported) instead of the
+  // signal killing the run.
+  std::signal(SIGXFSZ, SIG_IGN);
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
@@ -138,6 +143,15 @@ int main(int argc, char **argv)
       if (root)
         std::cerr << "anvil: error: " << e.what() << std::endl;
       return 3;
+    }
+  catch (const anvil::OutputError &e)
+    {
+      // Histories are rank 0's: the other ranks learn of the failure in a
+      // collective and return with it; a frame or summary that failed on
+      // one rank alone takes the job down.
+      if (root)
+        std::cerr << "anvil: error: " << e.what() << std::endl;
+      return 4;
     }
   catch (const dealii::ExceptionBase &e)
     {

@@ -87,6 +87,7 @@ namespace anvil
       {
         if (!reaction_file.is_open())
           {
+            record_output("reactions.csv");
             reaction_file.open(output_directory + "/reactions.csv");
             reaction_file << "time";
             for (const auto &bc : boundary_conditions)
@@ -107,6 +108,8 @@ namespace anvil
 
     if (!energy_file.is_open())
       {
+        record_output("energy.csv");
+        record_output("momentum.csv");
         energy_file.open(output_directory + "/energy.csv");
         energy_file << "time,kinetic,internal,hourglass,viscous,contact,friction,eroded,bond,"
                        "step_change,external_work,total,balance_error\n";
@@ -117,12 +120,14 @@ namespace anvil
         momentum_file << ",px,py,pz\n";
         for (const auto &p : probes)
           {
+            record_output("probe_" + p.name + ".csv");
             probe_files.emplace_back(output_directory + "/probe_" + p.name + ".csv");
             probe_files.back()
               << "time,ux,uy,uz,vx,vy,vz,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz\n";
           }
         for (const auto &c : contact_pairs)
           {
+            record_output("contact_" + c.name + ".csv");
             contact_files.emplace_back(output_directory + "/contact_" + c.name + ".csv");
             contact_files.back()
               << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration,"
@@ -154,6 +159,7 @@ namespace anvil
       for (const auto &b : bodies)
         if (b.is_rigid())
           {
+            record_output("rigid_" + b.name + ".csv");
             rigid_files.emplace_back(output_directory + "/rigid_" + b.name + ".csv");
             rigid_files.back() << "time,x,y,z,vx,vy,vz,fx,fy,fz,kinetic\n";
           }
@@ -178,6 +184,7 @@ namespace anvil
       {
         if (!erosion_file.is_open())
           {
+            record_output("erosion.csv");
             erosion_file.open(output_directory + "/erosion.csv");
             erosion_file << "time,element,body,x,y,z,effective_plastic_strain,energy,"
                             "reference_volume\n";
@@ -185,7 +192,6 @@ namespace anvil
         for (const auto &row : erosion_rows)
           erosion_file << row << '\n';
         erosion_rows.clear();
-        erosion_file.flush();
       }
     for (unsigned int c = 0; c < contact_pairs.size(); ++c)
       {
@@ -195,16 +201,11 @@ namespace anvil
                          << ',' << r.max_penetration << ',' << r.friction_on_first[0] << ','
                          << r.friction_on_first[1] << ',' << r.friction_on_first[2] << '\n';
       }
-    if (step_number % 100 == 0)
-      {
-        energy_file.flush();
-        momentum_file.flush();
-        for (auto &f : probe_files)
-          f.flush();
-        for (auto &f : contact_files)
-          f.flush();
-        reaction_file.flush();
-      }
+    // All histories reach the disk together, at most a second or 1,000 rows
+    // apart.
+    if (++rows_since_flush >= 1000 ||
+        std::chrono::steady_clock::now() - last_flush > std::chrono::seconds(1))
+      flush_histories();
   }
 
 
@@ -323,9 +324,14 @@ namespace anvil
     data_out.set_flags(flags);
     if (basename == "solution")
       {
+        const std::string frame = basename + "_" + Utilities::int_to_string(output_count, 4);
+        record_output(frame + ".pvtu");
+        for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(mpi_communicator); ++r)
+          record_output(frame + "." + std::to_string(r) + ".vtu");
         const std::string pvtu = data_out.write_vtu_with_pvtu_record(
           output_directory + "/", basename, output_count, mpi_communicator, 4);
         pvd_records.emplace_back(t, pvtu);
+        write_frame_index();
         if (!rebars.empty())
           output_rebar(t, output_count);
         ++output_count;
@@ -333,6 +339,8 @@ namespace anvil
     else
       {
         const std::string file = output_directory + "/" + basename;
+        record_output(basename + ".vtu");
+        record_output(basename + ".pvtu");
         data_out.write_vtu_in_parallel(file + ".vtu", mpi_communicator);
         if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
           {
@@ -389,6 +397,7 @@ namespace anvil
     Utilities::MPI::max(hi, mpi_communicator, hi);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
+    record_output("bodies.csv");
     std::ofstream out(output_directory + "/bodies.csv");
     out << "body,elements,eroded,peak_effective_plastic_strain_intact,"
            "peak_effective_plastic_strain,xmin,ymin,zmin,xmax,ymax,zmax,"
@@ -402,22 +411,49 @@ namespace anvil
   }
 
 
-  void Simulator::write_pvd()
+  void Simulator::write_frame_index()
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
-    std::ofstream pvd(output_directory + "/solution.pvd");
+    record_output("solution.pvd");
+    std::ostringstream pvd;
     DataOutBase::write_pvd_record(pvd, pvd_records);
-    energy_file.flush();
-    momentum_file.flush();
-    for (auto &f : probe_files)
-      f.flush();
-    for (auto &f : contact_files)
-      f.flush();
-    for (auto &f : rigid_files)
-      f.flush();
-    for (auto &f : rebar_files)
-      f.flush();
-    reaction_file.flush();
+    write_atomically(output_directory + "/solution.pvd", pvd.str());
+  }
+
+
+  void Simulator::flush_histories()
+  {
+    last_flush       = std::chrono::steady_clock::now();
+    rows_since_flush = 0;
+    auto flush = [&](HistoryFile &f) {
+      const std::string failure = f.flush();
+      if (!failure.empty() && output_failure.empty())
+        output_failure = failure;
+    };
+    for (auto *f : {&energy_file, &momentum_file, &reaction_file, &erosion_file})
+      flush(*f);
+    for (auto *files : {&probe_files, &contact_files, &rigid_files, &rebar_files})
+      for (auto &f : *files)
+        flush(f);
+  }
+
+
+  void Simulator::record_output(const std::string &name)
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !recorded_outputs.insert(name).second)
+      return;
+    std::ofstream list(output_directory + "/anvil_files.txt", std::ios::app);
+    list << name << '\n';
+    list.flush();
+    if (!list)
+      throw OutputError("cannot write " + output_directory + "/anvil_files.txt (the list of this run's files)");
+  }
+
+
+  void Simulator::write_pvd()
+  {
+    write_frame_index();
+    flush_histories();
   }
 } // namespace anvil

@@ -467,7 +467,9 @@ namespace anvil
         const auto  names = rebar_layouts[r].material->uniaxial_history_names();
         const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
         std::string file  = "rebar_" + rebar_layouts[r].name + "_" + Utilities::int_to_string(count, 4) + ".vtu";
-        std::ofstream out(output_directory + "/" + file);
+        record_output(file);
+        record_output("rebar_" + rebar_layouts[r].name + ".pvd");
+        std::ostringstream out;
         out << std::setprecision(10)
             << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
             << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << T.X.size() << "\" NumberOfCells=\""
@@ -511,9 +513,11 @@ namespace anvil
             out << "</PointData>\n";
           }
         out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+        write_atomically(output_directory + "/" + file, out.str());
         T.pvd_records.emplace_back(t, file);
-        std::ofstream pvd(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd");
+        std::ostringstream pvd;
         DataOutBase::write_pvd_record(pvd, T.pvd_records);
+        write_atomically(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd", pvd.str());
       }
   }
 
@@ -585,6 +589,7 @@ namespace anvil
     if (rebar_files.empty())
       for (const auto &layout : rebar_layouts)
         {
+          record_output("rebar_" + layout.name + ".csv");
           rebar_files.emplace_back(output_directory + "/rebar_" + layout.name + ".csv");
           rebar_files.back() << "time,max_axial_force,min_axial_force,max_stress,min_stress,"
                                 "max_effective_plastic_strain,probe_axial_force,probe_stress,probe_slip,"

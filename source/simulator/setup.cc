@@ -16,6 +16,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <filesystem>
+#include <unistd.h>
 #include <map>
 
 namespace anvil
@@ -136,6 +137,7 @@ namespace anvil
     setup_rigid_bodies();
     setup_contact();
     setup_probes();
+    prepare_output_directory(true);
     pcout << scene_file << ": scene '" << scene_name << "' is valid: "
           << bodies.size() << " bodies, " << triangulation.n_global_active_cells()
           << " elements, " << contact_pairs.size() << " contact pairs"
@@ -555,27 +557,59 @@ namespace anvil
   }
 
 
-  void Simulator::prepare_output_directory()
+  // A run deletes only files a run wrote: those listed in anvil_files.txt
+  // of the earlier run in this directory (a user's own files stay). Earlier
+  // results (that list, or an energy.csv) stop the run unless 'Overwrite
+  // existing output' is set.
+  void Simulator::prepare_output_directory(const bool check_only)
   {
-    int status = 0;
+    int         status = 0;
+    std::string detail;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         namespace fs = std::filesystem;
-        if (fs::exists(output_directory + "/energy.csv") && !overwrite_output)
+        const fs::path  dir  = output_directory;
+        const fs::path  list = dir / "anvil_files.txt";
+        std::error_code ec;
+        if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+          status = 3;
+        else if ((fs::exists(list) || fs::exists(dir / "energy.csv")) && !overwrite_output)
           status = 1;
+        else if (check_only)
+          {
+            // Nothing made or removed: only whether the run could write.
+            fs::path existing = fs::absolute(dir);
+            while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path())
+              existing = existing.parent_path();
+            if (!fs::is_directory(existing, ec) || access(existing.c_str(), W_OK) != 0)
+              {
+                status = 2;
+                detail = "no write permission in " + existing.string();
+              }
+          }
         else
           {
-            std::error_code ec;
-            fs::create_directories(output_directory, ec);
+            fs::create_directories(dir, ec);
             if (ec)
-              status = 2;
-            else
-              for (const auto &entry : fs::directory_iterator(output_directory))
-                {
-                  const auto ext = entry.path().extension().string();
-                  if (ext == ".vtu" || ext == ".pvtu" || ext == ".pvd" || ext == ".csv")
-                    fs::remove(entry.path());
-                }
+              {
+                status = 2;
+                detail = ec.message();
+              }
+            else if (access(dir.c_str(), W_OK) != 0)
+              {
+                status = 2;
+                detail = "no write permission";
+              }
+            else if (fs::exists(list))
+              {
+                std::ifstream in(list);
+                std::string   name;
+                while (std::getline(in, name))
+                  if (!name.empty() && name.find('/') == std::string::npos && name != "..")
+                    fs::remove(dir / name, ec);
+                in.close();
+                fs::remove(list, ec);
+              }
           }
       }
     status = Utilities::MPI::max(status, mpi_communicator);
@@ -586,7 +620,10 @@ namespace anvil
                        "subsection 'Simulation' or choose another 'Output "
                        "directory'");
     if (status == 2)
-      throw InputError(scene_file + ": cannot create the output directory '" +
-                       output_directory + "'");
+      throw InputError(scene_file + ": cannot create or write the output directory '" +
+                       output_directory + "'" + (detail.empty() ? "" : ": " + detail));
+    if (status == 3)
+      throw InputError(scene_file + ": the output directory '" + output_directory +
+                       "' is a file; choose another 'Output directory' or 'Name'");
   }
 } // namespace anvil

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <string>
 
 namespace anvil
@@ -99,9 +100,9 @@ namespace anvil
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
-    const std::string name = output_directory + "/summary.csv";
+    record_output("summary.csv");
+    std::ostringstream out;
     {
-      std::ofstream out(name + ".tmp");
       out << std::setprecision(10) << "quantity,value\n";
       out << "end_time_s," << time << '\n';
       out << "ended_by_criterion," << (summary.ended_early ? 1 : 0) << '\n';
@@ -140,12 +141,8 @@ namespace anvil
       out << "steps," << step_number << '\n';
       out << "elements," << triangulation.n_global_active_cells() << '\n';
       out << "processes," << Utilities::MPI::n_mpi_processes(mpi_communicator) << '\n';
-      out.flush();
-      if (!out)
-        throw std::runtime_error("could not write " + name + ".tmp (disk full or no permission)");
     }
-    if (std::rename((name + ".tmp").c_str(), name.c_str()) != 0)
-      throw std::runtime_error("could not rename " + name + ".tmp to " + name);
+    write_atomically(output_directory + "/summary.csv", out.str());
   }
 
 
@@ -154,8 +151,13 @@ namespace anvil
     if (!make_plots || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     std::string message;
+    record_output("plots.log");
     const bool  ok = run_python_script("anvil_plot.py", "'" + output_directory + "'",
                                       output_directory + "/plots.log", message);
+    // 'plots: energy.png, probe_x.png, ...': the pictures this run made.
+    if (ok && message.rfind("plots: ", 0) == 0)
+      for (const auto &png : Utilities::split_string_list(message.substr(7), ','))
+        record_output(png);
     pcout << "  " << (ok ? "" : "plots skipped: ") << message << std::endl;
   }
 } // namespace anvil

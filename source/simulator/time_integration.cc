@@ -411,7 +411,14 @@ namespace anvil
   // the stable step below 'Minimum time step ratio' of the first one.
   void Simulator::check_health(const double t, const unsigned int step, const double dt_next)
   {
-    const long int inverted = Utilities::MPI::max(inverted_cell, mpi_communicator);
+    // One reduction for the inverted elements and a failed write of the
+    // histories (rank 0's files).
+    std::vector<double> flags{double(inverted_cell), output_failure.empty() ? 0. : 1.};
+    Utilities::MPI::max(flags, mpi_communicator, flags);
+    if (flags[1] != 0)
+      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output_failure);
+    const long int inverted = std::lround(flags[0]);
     std::string    problem;
     if (inverted >= 0)
       problem = "element " + std::to_string(inverted) + " is inverted (Jacobian <= 0)";
@@ -745,6 +752,9 @@ namespace anvil
     velocity.update_ghost_values();
     output_results(time, "solution");
     write_pvd();
+    if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output_failure);
     write_body_summary();
     write_summary(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
     write_plots();

@@ -20,8 +20,12 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <anvil/utilities/output_files.h>
+
+#include <chrono>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -153,7 +157,9 @@ namespace anvil
                                  double &step_change);
     void   update_rebar_position(double dt);
     void setup_probes();
-    void prepare_output_directory();
+    /** Make the output directory and remove the files of the earlier run
+        there; with @p check_only, only report what would stop the run. */
+    void prepare_output_directory(bool check_only = false);
 
     // The explicit step (source/simulator/time_integration.cc)
     void   run_scene();
@@ -245,7 +251,7 @@ namespace anvil
     std::vector<Probe>                    probes;
     std::vector<Rebar::Layout>            rebar_layouts;
     std::vector<Rebar::Trusses>           rebars;
-    std::vector<std::ofstream>            rebar_files;
+    std::vector<HistoryFile>              rebar_files;
 
     // Discretisation
     dealii::parallel::distributed::Triangulation<3> triangulation;
@@ -274,7 +280,7 @@ namespace anvil
     /** Per body: force and torque (about the centre) on a rigid body from
         analytic contact shapes, this step (replicated on every rank). */
     std::vector<dealii::Tensor<1, 3>> rigid_shape_force, rigid_shape_torque;
-    std::vector<std::ofstream>        rigid_files;
+    std::vector<HistoryFile>          rigid_files;
     void advance_rigid_bodies(double dt_previous, double dt, double &kinetic, double &work,
                               double &step_change);
 
@@ -289,7 +295,7 @@ namespace anvil
         the support exerts on the body). */
     std::vector<unsigned int> constrained_bc;
     std::vector<double>       bc_reaction;
-    std::ofstream             reaction_file;
+    HistoryFile               reaction_file;
 
     /** Per contact pair: local index of each pair node's x dof on this rank
         if owned, else -1; and the gather/scatter buffers. */
@@ -332,8 +338,22 @@ namespace anvil
     std::vector<std::string> erosion_rows;
 
     // Files (rank 0)
-    std::ofstream                energy_file, momentum_file, erosion_file;
-    std::vector<std::ofstream>   probe_files, contact_files;
+    HistoryFile                  energy_file, momentum_file, erosion_file;
+    std::vector<HistoryFile>     probe_files, contact_files;
+    /** Write the rows every history holds, all together (rank 0); a write
+        error is kept in output_failure, shared with the other ranks at the
+        next health check. */
+    void                         flush_histories();
+    std::chrono::steady_clock::time_point last_flush;
+    unsigned int                 rows_since_flush = 0;
+    std::string                  output_failure;
+    /** Note @p name (in the output directory) in anvil_files.txt before it
+        is written: the next run in that directory deletes just these
+        (rank 0). */
+    void                         record_output(const std::string &name);
+    std::set<std::string>        recorded_outputs;
+    /** solution.pvd, rewritten (atomically) with each frame. */
+    void                         write_frame_index();
     std::vector<std::pair<double, std::string>> pvd_records;
     unsigned int                 output_count = 0;
   };
