@@ -20,12 +20,14 @@ namespace
     "       anvil SCENE.prm --set 'SUBSECTION/.../ENTRY=VALUE' ...   run a scene with entries changed\n"
     "       anvil --study STUDY.prm [--jobs N]   run a parameter study (its runs, study.csv, plots)\n"
     "       anvil --study STUDY.prm --check      check a study file and every run's entries; run nothing\n"
+    "       anvil --resume SCENE.prm   continue a run from the checkpoint in its output directory\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
     "       anvil --print-parameters --material-point   the same for driver files\n"
     "       anvil --help               this text\n"
-    "Exit status: 0 success, 2 bad input, 3 numerical failure, 4 results could not be written, 1 other errors.\n";
+    "Exit status: 0 success, 2 bad input, 3 numerical failure, 4 results could not be written,\n"
+    "             5 stopped by SIGTERM/SIGINT after writing a checkpoint, 1 other errors.\n";
 }
 
 int main(int argc, char **argv)
@@ -70,7 +72,7 @@ int main(int argc, char **argv)
     }
 
   // [--check | --material-point] FILE [--set PATH=VALUE]...
-  bool                     check_only = false, driver = false;
+  bool                     check_only = false, driver = false, resume = false;
   std::string              file;
   std::vector<std::string> overrides;
   for (unsigned int i = 0; i < args.size(); ++i)
@@ -81,6 +83,8 @@ int main(int argc, char **argv)
         check_only = true;
       else if (a == "--material-point" && i == 0)
         driver = true;
+      else if (a == "--resume" && i == 0)
+        resume = true;
       else if (a == "--set")
         {
           if (i + 1 == args.size())
@@ -130,7 +134,10 @@ int main(int argc, char **argv)
       if (check_only)
         simulator.check();
       else
-        simulator.run();
+        {
+          anvil::install_stop_handler();
+          simulator.run(resume);
+        }
     }
   catch (const anvil::InputError &e)
     {
@@ -143,6 +150,12 @@ int main(int argc, char **argv)
       if (root)
         std::cerr << "anvil: error: " << e.what() << std::endl;
       return 3;
+    }
+  catch (const anvil::Interrupted &e)
+    {
+      if (root)
+        std::cerr << "anvil: " << e.what() << std::endl;
+      return 5;
     }
   catch (const anvil::OutputError &e)
     {

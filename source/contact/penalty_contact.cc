@@ -150,6 +150,31 @@ namespace anvil::Contact
   };
 
 
+  void PenaltyContact::serialize(StateArchive &ar)
+  {
+    for (auto &surf : surface)
+      ar &surf.stiffness &surf.depth &surf.active &surf.node_stiffness &surf.node_depth;
+    ar &tangential_force[0] &tangential_force[1] &previous_tangential_force;
+    // The trees are rebuilt from the positions they were built with (the
+    // tree over surface s serves the pass with s as master), so the resumed
+    // run rebuilds them at the same steps and finds the same candidates.
+    for (unsigned int s = 0; s < 2; ++s)
+      if (search[s])
+        {
+          ar &search[s]->built &search[s]->safety;
+          if (ar.is_loading() && !search[s]->built.empty())
+            {
+              const auto        &x = search[s]->built;
+              std::vector<Value> values;
+              values.reserve(surface[s].nodes.size());
+              for (const unsigned int i : surface[s].nodes)
+                values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+              search[s]->tree = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
+            }
+        }
+  }
+
+
   void PenaltyContact::declare_parameters(dealii::ParameterHandler &prm)
   {
     using namespace dealii;

@@ -250,6 +250,17 @@ namespace anvil
                         "The run stops with an error when the stable time step "
                         "falls below this fraction of the first step's (a collapsing "
                         "element; LS-DYNA's DTMIN); 0: never. Units: none.");
+      prm.declare_entry("Checkpoint interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Simulated time between checkpoints (OUTPUT/NAME/checkpoint/: "
+                        "everything 'anvil --resume SCENE.prm' needs to continue the run "
+                        "bitwise on the same number of processes); 0: none. SIGTERM and "
+                        "SIGINT always write one and stop the run. Units: s.");
+      prm.declare_entry("Checkpoint wall interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Wall-clock time between checkpoints; 0: none. Units: s.");
       prm.declare_entry("Plots",
                         "false",
                         Patterns::Bool(),
@@ -515,6 +526,8 @@ namespace anvil
         }
         print_wall_times = prm.get_bool("Print wall times");
         make_plots       = prm.get_bool("Plots");
+        checkpoint_interval      = prm.get_double("Checkpoint interval");
+        checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         prm.leave_subsection();
         if (time_step_factor <= 0)
           throw InputError("entry 'Simulation/Time step safety factor' must "

@@ -413,8 +413,22 @@ namespace anvil
   {
     // One reduction for the inverted elements and a failed write of the
     // histories (rank 0's files).
-    std::vector<double> flags{double(inverted_cell), output_failure.empty() ? 0. : 1.};
+    // ... and, from rank 0's clock and every rank's signal handler, whether
+    // a checkpoint is due and whether the run was asked to stop.
+    const bool wall_due = checkpoint_wall_interval > 0 &&
+                          std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                        last_checkpoint_wall)
+                              .count() >= checkpoint_wall_interval &&
+                          Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    std::vector<double> flags{double(inverted_cell),
+                              output_failure.empty() ? 0. : 1.,
+                              wall_due ? 1. : 0.,
+                              stop_signal_received() ? 1. : 0.};
     Utilities::MPI::max(flags, mpi_communicator, flags);
+    if (flags[2] != 0)
+      checkpoint_due = true;
+    if (flags[3] != 0)
+      stop_requested = true;
     if (flags[1] != 0)
       throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
                                                  output_failure);
@@ -573,11 +587,11 @@ namespace anvil
 
 
   // @sect3{The run}
-  void Simulator::run()
+  void Simulator::run(const bool resume)
   {
     try
       {
-        run_scene();
+        run_scene(resume);
       }
     catch (...)
       {
@@ -594,7 +608,7 @@ namespace anvil
   }
 
 
-  void Simulator::run_scene()
+  void Simulator::run_scene(const bool resume)
   {
     timer = std::make_unique<TimerOutput>(mpi_communicator,
                                           pcout,
@@ -612,7 +626,10 @@ namespace anvil
       setup_rigid_bodies();
       setup_contact();
       setup_probes();
-      prepare_output_directory();
+      if (resume)
+        resume_output_directory();
+      else
+        prepare_output_directory();
       position.update_ghost_values();
       velocity.update_ghost_values();
       good_position = position;
@@ -632,43 +649,52 @@ namespace anvil
             << "\n";
     pcout << "  results in " << output_directory << "/" << std::endl;
 
-    // Step 0: forces of the initial state (stress free), energy E_0.
-    zero_forces();
-    critical_dt = compute_internal_forces(0.);
-    if (contact_frequency_squared > 0)
+    if (resume)
+      load_checkpoint();
+    else
       {
-        const double reduction =
-          1. - 1. / std::sqrt(1. + 0.25 * contact_frequency_squared * critical_dt * critical_dt);
-        if (reduction > 0.01)
-          pcout << "  contact penalty springs lower the stable time step by " << std::setprecision(3)
-                << 100. * reduction << " %" << std::endl;
+        // Step 0: forces of the initial state (stress free), energy E_0.
+        zero_forces();
+        critical_dt = compute_internal_forces(0.);
+        if (contact_frequency_squared > 0)
+          {
+            const double reduction =
+              1. - 1. / std::sqrt(1. + 0.25 * contact_frequency_squared * critical_dt * critical_dt);
+            if (reduction > 0.01)
+              pcout << "  contact penalty springs lower the stable time step by " << std::setprecision(3)
+                    << 100. * reduction << " %" << std::endl;
+          }
+        apply_contact(0.);
+
+        double kinetic0 = 0;
+        for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
+          if (rigid_dof.empty() || !rigid_dof[i])
+            kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
+        energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
+        for (unsigned int r = 0; r < rebars.size(); ++r)
+          for (unsigned int j = 0; j < rebars[r].vs.size(); ++j)
+            energies.kinetic += 0.5 * rebars[r].ms[j / 3] * rebars[r].vs[j] * rebars[r].vs[j];
+        // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
+        for (const auto &b : bodies)
+          if (b.is_rigid())
+            energies.kinetic += 0.5 * (b.rigid.mass * (b.rigid.velocity * b.rigid.velocity) +
+                                       b.rigid.angular_velocity * (b.rigid.reference_inertia * b.rigid.angular_velocity));
+        initial_energy   = energies.total();
+        summary.initial_kinetic = energies.kinetic;
+        output_results(0., "solution");
+        loop = LoopState();
+        loop.next_output = output_interval;
       }
-    apply_contact(0.);
-
-    double kinetic0 = 0;
-    for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
-      if (rigid_dof.empty() || !rigid_dof[i])
-        kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
-    energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
-    for (unsigned int r = 0; r < rebars.size(); ++r)
-      for (unsigned int j = 0; j < rebars[r].vs.size(); ++j)
-        energies.kinetic += 0.5 * rebars[r].ms[j / 3] * rebars[r].vs[j] * rebars[r].vs[j];
-    // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
-    for (const auto &b : bodies)
-      if (b.is_rigid())
-        energies.kinetic += 0.5 * (b.rigid.mass * (b.rigid.velocity * b.rigid.velocity) +
-                                   b.rigid.angular_velocity * (b.rigid.reference_inertia * b.rigid.angular_velocity));
-    initial_energy   = energies.total();
-    summary.initial_kinetic = energies.kinetic;
-    output_results(0., "solution");
-
     const auto   wall_start    = std::chrono::steady_clock::now();
-    double       dt_previous   = 0;
-    double       next_output   = output_interval;
-    double       next_history  = 0;
-    double       next_progress = 0;
+    const double time_start    = time;
+    double      &dt_previous   = loop.dt_previous;
+    double      &next_output   = loop.next_output;
+    double      &next_history  = loop.next_history;
+    double      &next_progress = loop.next_progress;
+    next_checkpoint            = checkpoint_interval > 0 ? time + checkpoint_interval : 1e300;
+    last_checkpoint_wall       = wall_start;
     const double eps           = 1e-12 * end_time;
-    bool quiet_end = false;
+    bool &quiet_end = loop.quiet_end;
     while (true)
       {
         const bool last = time >= end_time - eps || quiet_end;
@@ -720,7 +746,7 @@ namespace anvil
                   << "  balance = " << std::setw(9) << balance_error;
             if (print_wall_times && time > 0)
               pcout << "  left ~" << std::setprecision(3)
-                    << wall / time * (end_time - time) << " s";
+                    << wall / std::max(time - time_start, 1e-300) * (end_time - time) << " s";
             pcout << std::endl;
             next_progress += 0.1 * end_time;
           }
@@ -746,6 +772,30 @@ namespace anvil
           {
             output_results(time, "solution");
             next_output += output_interval;
+          }
+
+        // A checkpoint by simulated time, by wall time (rank 0's clock,
+        // shared at the health check) or on SIGTERM / SIGINT, which then
+        // stops the run.
+        if (time >= next_checkpoint - eps && time < end_time - eps)
+          {
+            checkpoint_due = true;
+            while (next_checkpoint <= time + eps)
+              next_checkpoint += checkpoint_interval;
+          }
+        if (checkpoint_due || stop_requested)
+          {
+            write_checkpoint();
+            checkpoint_due = false;
+            if (stop_requested)
+              {
+                std::ostringstream msg;
+                msg << "interrupted at t = " << time << " s, step " << step_number
+                    << ": checkpoint and frame index written; continue with 'anvil --resume "
+                    << scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                    << " process(es)";
+                throw Interrupted(msg.str());
+              }
           }
       }
     position.update_ghost_values();

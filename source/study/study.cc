@@ -6,11 +6,14 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/study/study.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/output_files.h>
 #include <anvil/utilities/python_script.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
+#include <csignal>
+#include <cerrno>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <fcntl.h>
@@ -88,24 +91,6 @@ namespace anvil
       std::ostringstream s;
       s << in.rdbuf();
       return s.str();
-    }
-
-    // Write under a temporary name, then rename: a reader (or a study
-    // started again) never sees half a file.
-    void write_atomically(const fs::path &path, const std::string &text)
-    {
-      const fs::path tmp = path.string() + ".tmp";
-      {
-        std::ofstream out(tmp);
-        out << text;
-        out.flush();
-        if (!out)
-          throw std::runtime_error("could not write " + tmp.string() + " (disk full or no permission)");
-      }
-      std::error_code ec;
-      fs::rename(tmp, path, ec);
-      if (ec)
-        throw std::runtime_error("could not rename " + tmp.string() + ": " + ec.message());
     }
 
     void declare_lists(dealii::ParameterHandler &prm)
@@ -416,7 +401,11 @@ namespace anvil
     fs::create_directories(dir);
     std::error_code ec;
     fs::remove(dir / "run.status", ec);
-    write_atomically(dir / "run.args", joined(run.overrides));
+    // A run the study was stopped in (its checkpoint there, the same
+    // overrides) continues from its checkpoint.
+    const bool resume = fs::exists(dir / "checkpoint" / "info") && fs::exists(dir / "run.args") &&
+                        read_file(dir / "run.args") == joined(run.overrides);
+    write_atomically((dir / "run.args").string(), joined(run.overrides));
 
     const std::string exe = fs::read_symlink("/proc/self/exe").string();
     std::vector<std::string> argv;
@@ -429,6 +418,8 @@ namespace anvil
         argv.push_back(std::to_string(processes));
       }
     argv.push_back(exe);
+    if (resume)
+      argv.push_back("--resume");
     argv.push_back(base_scene);
     for (const auto &o : run.overrides)
       {
@@ -460,6 +451,11 @@ namespace anvil
     if (jobs_from_command_line > 0)
       jobs = jobs_from_command_line;
     validate();
+    // Without SA_RESTART, so that waitpid returns when a signal arrives.
+    struct sigaction action = {};
+    action.sa_handler       = [](int) { raise_stop_flag(); };
+    sigaction(SIGTERM, &action, nullptr);
+    sigaction(SIGINT, &action, nullptr);
     fs::create_directories(directory);
     std::cout << "study " << name << ": " << runs.size() << " runs of " << base_scene << ", "
               << jobs << " at a time, " << processes << " process(es) each, in " << directory
@@ -501,6 +497,19 @@ namespace anvil
           continue;
         int         wstatus = 0;
         const pid_t pid     = waitpid(-1, &wstatus, 0);
+        if (pid < 0 && errno == EINTR && stop_signal_received())
+          {
+            // SIGTERM / SIGINT: the running runs checkpoint and stop; the
+            // study started again resumes them.
+            for (const auto &[child, what] : running)
+              kill(child, SIGTERM);
+            for (std::size_t k = 0; k < running.size(); ++k)
+              waitpid(-1, &wstatus, 0);
+            std::cout << "study " << name << ": stopped; " << done << " of " << runs.size()
+                      << " runs finished; the runs under way wrote checkpoints: 'anvil --study " << file
+                      << "' continues" << std::endl;
+            return 5;
+          }
         if (pid < 0)
           throw std::runtime_error("waitpid failed");
         const auto it = running.find(pid);
@@ -517,7 +526,7 @@ namespace anvil
         ++wall_runs;
         std::ostringstream status;
         status << "exit " << run.status << "\nwall " << wall << "\n";
-        write_atomically(fs::path(directory) / run.name / "run.status", status.str());
+        write_atomically((fs::path(directory) / run.name / "run.status").string(), status.str());
         std::ostringstream what;
         what << "finished in " << std::fixed << std::setprecision(1) << wall << " s";
         if (run.status != 0)
@@ -597,7 +606,7 @@ namespace anvil
           }
         out << '\n';
       }
-    write_atomically(fs::path(directory) / "study.csv", out.str());
+    write_atomically((fs::path(directory) / "study.csv").string(), out.str());
     std::cout << "study " << name << ": " << (fs::path(directory) / "study.csv").string() << std::endl;
   }
 

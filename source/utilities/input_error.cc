@@ -1,9 +1,36 @@
 #include <anvil/utilities/input_error.h>
 
+#include <csignal>
+
 #include <sstream>
 
 namespace anvil
 {
+  namespace
+  {
+    volatile std::sig_atomic_t stop_signal = 0;
+    void on_stop_signal(int)
+    {
+      stop_signal = 1;
+    }
+  } // namespace
+
+  void install_stop_handler()
+  {
+    std::signal(SIGTERM, on_stop_signal);
+    std::signal(SIGINT, on_stop_signal);
+  }
+
+  void raise_stop_flag()
+  {
+    stop_signal = 1;
+  }
+
+  bool stop_signal_received()
+  {
+    return stop_signal != 0;
+  }
+
   std::string fold_whitespace(const std::string &text)
   {
     std::string out;

@@ -45,6 +45,19 @@ namespace anvil
   }
 
 
+  void HistoryFile::resume(const std::string &file, const long length)
+  {
+    path  = file;
+    errno = 0;
+    if (::truncate(file.c_str(), length) != 0)
+      throw OutputError("cannot cut " + file + " back to its length at the checkpoint: " + cause());
+    out.open(file, std::ios::app);
+    if (!out)
+      throw OutputError("cannot open " + file + " to continue it: " + cause());
+    written = length;
+  }
+
+
   std::string HistoryFile::flush()
   {
     const std::string text = buffer.str();

@@ -5,6 +5,8 @@
  */
 #pragma once
 
+#include <anvil/utilities/state_archive.h>
+
 #include <anvil/rigid_body/rigid_body.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -104,6 +106,10 @@ namespace anvil::Contact
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm,
                                  const std::string        &name);
+
+    /** Everything a step changes (checkpoints): surfaces (erosion),
+        friction forces and the search trees as last built. */
+    void serialize(StateArchive &ar);
 
     /** Build the replicated surfaces from all ranks' segments. */
     void setup(const std::vector<SegmentDescription> &first,

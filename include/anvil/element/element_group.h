@@ -20,6 +20,8 @@
  */
 #pragma once
 
+#include <anvil/utilities/state_archive.h>
+
 #include <anvil/material_model/interface.h>
 
 #include <array>
@@ -314,5 +316,14 @@ namespace anvil::Element
     std::vector<double> strength_factors;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
+
+  public:
+    /** Everything a step changes (checkpoints). */
+    void serialize(StateArchive &ar)
+    {
+      ar &alive &stresses &history &hourglass_modes &hourglass_resistance &internal_energy
+        &hourglass_energy &bulk_pressure &shape_factor &n_calls &refresh_shape &strength_factors
+          &energy_weight &scratch_history;
+    }
   };
 } // namespace anvil::Element

@@ -5,6 +5,8 @@
  */
 #pragma once
 
+#include <anvil/utilities/state_archive.h>
+
 #include <anvil/material_model/interface.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -137,5 +139,12 @@ namespace anvil::Rebar
 
     /** Trilinear shape functions at xi (lexicographic vertices). */
     static std::array<double, 8> shape_values(const std::array<double, 3> &xi);
+
+    /** Everything a step changes (checkpoints). */
+    void serialize(StateArchive &ar)
+    {
+      ar &length &stress &force &energy &history &x &xs &vs &fs &xh &plastic_slip &damage &bond_stress
+        &slip &bond_force &pulled &pull_reaction &nodal_force &tangent &x_bond_old &pvd_records;
+    }
   };
 } // namespace anvil::Rebar

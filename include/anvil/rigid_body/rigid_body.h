@@ -7,6 +7,8 @@
  */
 #pragma once
 
+#include <anvil/utilities/state_archive.h>
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -127,5 +129,14 @@ namespace anvil::RigidBody
 
   private:
     dealii::Tensor<1, 3> initial_velocity;
+
+  public:
+    /** Everything the motion changes (checkpoints). */
+    void serialize(StateArchive &ar)
+    {
+      ar &mass &reference_centre &centre &previous_centre &reference_inertia &rotation &previous_rotation
+        &velocity &angular_velocity &angular_momentum &last_force &kinetic_energy &reaction_force
+          &reaction_torque &last_reaction_work;
+    }
   };
 } // namespace anvil::RigidBody

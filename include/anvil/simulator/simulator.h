@@ -21,6 +21,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <anvil/utilities/output_files.h>
+#include <anvil/utilities/state_archive.h>
 
 #include <chrono>
 #include <fstream>
@@ -104,8 +105,9 @@ namespace anvil
     /** Print the whole parameter tree with documentation (.prm syntax). */
     static void print_parameters(std::ostream &out);
 
-    /** Run the scene to its end time. */
-    void run();
+    /** Run the scene to its end time; with @p resume, continue from the
+        checkpoint in its output directory (same number of processes). */
+    void run(bool resume = false);
 
     /** Build everything a run needs (mesh, DoFs, boundary conditions,
         contact surfaces) without running or writing: a scene check. */
@@ -162,7 +164,36 @@ namespace anvil
     void prepare_output_directory(bool check_only = false);
 
     // The explicit step (source/simulator/time_integration.cc)
-    void   run_scene();
+    void   run_scene(bool resume);
+
+    // Checkpoints (source/simulator/checkpoint.cc)
+    /** Every piece of state a step changes, in one order for writing and
+        reading. */
+    void serialize(StateArchive &ar);
+    /** OUTPUT/NAME/checkpoint/: state.R.bin per process and info, written
+        as checkpoint.new and renamed (the previous one stays until then). */
+    void write_checkpoint();
+    void load_checkpoint();
+    /** For --resume: the output directory must hold a checkpoint; nothing
+        is deleted, the run's file list is read back. */
+    void resume_output_directory();
+    /** The loop's own schedule (what the step, outputs and end criterion
+        have reached). */
+    struct LoopState
+    {
+      double dt_previous   = 0;
+      double next_output   = 0;
+      double next_history  = 0;
+      double next_progress = 0;
+      bool   quiet_end     = false;
+    };
+    LoopState loop;
+    double    checkpoint_interval      = 0;
+    double    checkpoint_wall_interval = 0;
+    double    next_checkpoint          = 1e300;
+    std::chrono::steady_clock::time_point last_checkpoint_wall;
+    bool      checkpoint_due = false;
+    bool      stop_requested = false;
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     void   apply_contact(double dt_previous);

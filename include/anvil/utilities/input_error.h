@@ -36,6 +36,26 @@ namespace anvil
   };
 
   /**
+   * The run was asked to stop (SIGTERM, SIGINT) and wrote a checkpoint.
+   * main() prints it as one line and exits with status 5.
+   */
+  class Interrupted : public std::runtime_error
+  {
+  public:
+    explicit Interrupted(const std::string &message)
+      : std::runtime_error(message)
+    {}
+  };
+
+  /** Catch SIGTERM and SIGINT: the run checkpoints and stops at the next
+      step instead of dying mid-write. */
+  void install_stop_handler();
+  /** Whether SIGTERM or SIGINT arrived. */
+  bool stop_signal_received();
+  /** What the handler does (async-signal-safe). */
+  void raise_stop_flag();
+
+  /**
    * The message a deal.II exception carries, without the source location
    * decoration, folded onto one line.
    */

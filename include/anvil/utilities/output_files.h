@@ -54,6 +54,16 @@ namespace anvil
       return out.is_open();
     }
 
+    /** Bytes of whole rows on disk. */
+    long bytes_written() const
+    {
+      return written;
+    }
+
+    /** Continue a file a checkpoint recorded at @p length bytes: cut it back
+        to that length and append. */
+    void resume(const std::string &path, long length);
+
     template <typename T>
     HistoryFile &operator<<(const T &x)
     {

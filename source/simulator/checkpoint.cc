@@ -1,0 +1,220 @@
+/**
+ * @file
+ * Checkpoint and restart. The mesh, partition and every constant of the
+ * scene are rebuilt from the scene file exactly as in the first run (same
+ * number of processes); the checkpoint holds what the steps changed: nodal
+ * state, element stresses and histories, hourglass state, contact history
+ * and search trees, rigid bodies, bars, energies, the loop's schedule and
+ * the lengths of the history files, which a resumed run cuts back to and
+ * appends to. The resumed run's histories and fields equal an uninterrupted
+ * run's bitwise (tests/verification/restart.py).
+ */
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    // The history files in a fixed order: their lengths at the checkpoint.
+    std::vector<HistoryFile *> history_files(HistoryFile              &energy,
+                                             HistoryFile              &momentum,
+                                             HistoryFile              &reaction,
+                                             HistoryFile              &erosion,
+                                             std::vector<HistoryFile> &probes,
+                                             std::vector<HistoryFile> &contacts,
+                                             std::vector<HistoryFile> &rigids,
+                                             std::vector<HistoryFile> &rebars)
+    {
+      std::vector<HistoryFile *> files{&energy, &momentum, &reaction, &erosion};
+      for (auto *list : {&probes, &contacts, &rigids, &rebars})
+        for (auto &f : *list)
+          files.push_back(&f);
+      return files;
+    }
+  } // namespace
+
+
+  void Simulator::serialize(StateArchive &ar)
+  {
+    ar &position &velocity &force &mass &good_position &good_velocity &good_time;
+    ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
+      &step_change_steps &contact_frequency_squared &current_dt &step_number &time &inverted_cell
+        &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &pvd_records &output_count
+          &summary &loop;
+    ar &constrained_velocity &constrained_reaction &constrained_velocity_old &bc_reaction
+      &rigid_shape_force &rigid_shape_torque &contact_results &contact_positions &contact_velocities
+        &contact_forces;
+    for (auto &g : element_groups)
+      g.serialize(ar);
+    for (auto &c : contact_pairs)
+      c.serialize(ar);
+    for (auto &b : bodies)
+      b.rigid.serialize(ar);
+    for (auto &t : rebars)
+      t.serialize(ar);
+  }
+
+
+  void Simulator::write_checkpoint()
+  {
+    TimerOutput::Scope t(*timer, "checkpoint");
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const std::string  dir  = output_directory + "/checkpoint";
+    // The histories first: the checkpoint records how long they are.
+    flush_histories();
+    if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output_failure);
+    StateArchive ar;
+    serialize(ar);
+    // History lengths and open files (rank 0's; -1: not open).
+    std::vector<long> lengths;
+    std::vector<unsigned int> counts{(unsigned int)probe_files.size(), (unsigned int)contact_files.size(),
+                                     (unsigned int)rigid_files.size(), (unsigned int)rebar_files.size()};
+    for (auto *f : history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
+                                 contact_files, rigid_files, rebar_files))
+      lengths.push_back(f->is_open() ? f->bytes_written() : -1);
+    ar &counts &lengths;
+
+    if (rank == 0)
+      {
+        record_output("checkpoint");
+        std::error_code ec;
+        fs::remove_all(dir + ".new", ec);
+        fs::create_directories(dir + ".new", ec);
+      }
+    MPI_Barrier(mpi_communicator);
+    std::string failure;
+    try
+      {
+        write_atomically(dir + ".new/state." + std::to_string(rank) + ".bin", ar.data());
+      }
+    catch (const OutputError &e)
+      {
+        failure = e.what();
+      }
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(failure.empty() ? "a checkpoint file could not be written (see the other ranks)" :
+                                          failure);
+    if (rank == 0)
+      {
+        std::ostringstream info;
+        info << "processes " << Utilities::MPI::n_mpi_processes(mpi_communicator) << "\ntime "
+             << std::setprecision(17) << time << "\nstep " << step_number << "\n";
+        write_atomically(dir + ".new/info", info.str());
+        // The previous checkpoint goes only once the new one is complete.
+        std::error_code ec;
+        fs::remove_all(dir + ".old", ec);
+        if (fs::exists(dir))
+          fs::rename(dir, dir + ".old", ec);
+        fs::rename(dir + ".new", dir, ec);
+        if (ec)
+          failure = "cannot rename " + dir + ".new to " + dir + ": " + ec.message();
+        fs::remove_all(dir + ".old", ec);
+      }
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(failure.empty() ? "the checkpoint could not be completed (see rank 0)" : failure);
+    last_checkpoint_wall = std::chrono::steady_clock::now();
+    pcout << "  checkpoint at t = " << time << " s, step " << step_number << std::endl;
+  }
+
+
+  void Simulator::resume_output_directory()
+  {
+    const std::string dir = output_directory + "/checkpoint";
+    int               n   = -1;
+    if (std::ifstream info(dir + "/info"); info)
+      {
+        std::string word;
+        info >> word >> n;
+      }
+    if (n < 0)
+      throw InputError(scene_file + ": --resume: no checkpoint in '" + dir +
+                       "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
+    if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
+      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
+                       std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));
+    // The files this run's first part wrote stay on the list.
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ifstream list(output_directory + "/anvil_files.txt");
+        std::string   name;
+        while (std::getline(list, name))
+          if (!name.empty())
+            recorded_outputs.insert(name);
+      }
+  }
+
+
+  void Simulator::load_checkpoint()
+  {
+    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const std::string  file = output_directory + "/checkpoint/state." + std::to_string(rank) + ".bin";
+    std::ifstream      in(file, std::ios::binary);
+    std::ostringstream data;
+    data << in.rdbuf();
+    int bad = in ? 0 : 1;
+    if (Utilities::MPI::max(bad, mpi_communicator) != 0)
+      throw InputError(scene_file + ": --resume: cannot read " + file);
+
+    StateArchive              ar(data.str());
+    std::vector<unsigned int> counts;
+    std::vector<long>         lengths;
+    std::string               failure;
+    try
+      {
+        serialize(ar);
+        ar &counts &lengths;
+        if (!ar.exhausted())
+          failure = "longer than the state of this scene";
+      }
+    catch (const std::exception &e)
+      {
+        failure = e.what();
+      }
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw InputError(scene_file + ": --resume: the checkpoint does not fit this scene (" +
+                       (failure.empty() ? std::string("on another rank") : failure) +
+                       "); was the scene changed since it was written?");
+    position.update_ghost_values();
+    velocity.update_ghost_values();
+    mass.update_ghost_values();
+
+    // The histories: cut back to their length at the checkpoint, then
+    // appended to (rank 0).
+    if (rank == 0)
+      {
+        probe_files.resize(counts[0]);
+        contact_files.resize(counts[1]);
+        rigid_files.resize(counts[2]);
+        rebar_files.resize(counts[3]);
+        std::vector<std::string> names{"energy.csv", "momentum.csv", "reactions.csv", "erosion.csv"};
+        for (const auto &p : probes)
+          names.push_back("probe_" + p.name + ".csv");
+        for (const auto &c : contact_pairs)
+          names.push_back("contact_" + c.name + ".csv");
+        for (const auto &b : bodies)
+          if (b.is_rigid())
+            names.push_back("rigid_" + b.name + ".csv");
+        for (const auto &l : rebar_layouts)
+          names.push_back("rebar_" + l.name + ".csv");
+        const auto files = history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
+                                         contact_files, rigid_files, rebar_files);
+        for (unsigned int k = 0; k < files.size() && k < lengths.size(); ++k)
+          if (lengths[k] >= 0)
+            files[k]->resume(output_directory + "/" + names[k], lengths[k]);
+      }
+    last_flush = std::chrono::steady_clock::now();
+    pcout << "  resumed from the checkpoint at t = " << time << " s, step " << step_number << std::endl;
+  }
+} // namespace anvil
