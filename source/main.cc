@@ -21,6 +21,7 @@ namespace
     "       anvil --study STUDY.prm [--jobs N]   run a parameter study (its runs, study.csv, plots)\n"
     "       anvil --study STUDY.prm --check      check a study file and every run's entries; run nothing\n"
     "       anvil --resume SCENE.prm   continue a run from the checkpoint in its output directory\n"
+    "       anvil --print-cost SCENE.prm   estimate steps, element-cycles and wall time; run nothing\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
@@ -72,7 +73,7 @@ int main(int argc, char **argv)
     }
 
   // [--check | --material-point] FILE [--set PATH=VALUE]...
-  bool                     check_only = false, driver = false, resume = false;
+  bool                     check_only = false, driver = false, resume = false, cost = false;
   std::string              file;
   std::vector<std::string> overrides;
   for (unsigned int i = 0; i < args.size(); ++i)
@@ -85,6 +86,8 @@ int main(int argc, char **argv)
         driver = true;
       else if (a == "--resume" && i == 0)
         resume = true;
+      else if (a == "--print-cost" && i == 0)
+        cost = true;
       else if (a == "--set")
         {
           if (i + 1 == args.size())
@@ -133,6 +136,8 @@ int main(int argc, char **argv)
       anvil::Simulator simulator(file, MPI_COMM_WORLD, overrides);
       if (check_only)
         simulator.check();
+      else if (cost)
+        simulator.print_cost();
       else
         {
           anvil::install_stop_handler();

@@ -182,11 +182,18 @@ namespace anvil::MaterialModel
                       "(64)-(65), continuous form) and the tensile one by TDIF "
                       "(Eqs. (66)-(67)) of the filtered largest principal strain "
                       "rate. Off: no rate is computed.");
+    prm.declare_entry("DIF reference strength",
+                      "",
+                      Patterns::Anything(),
+                      "Cylinder strength the rate curves of Eqs. (64)-(67) are "
+                      "evaluated for (the seed's Fig. 13a: concretes of several "
+                      "strengths with the one rate curve of 50 MPa). Empty: f'c, "
+                      "each strength its own curve (Fig. 13b). Units: Pa.");
     prm.declare_entry("Cube strength",
                       "",
                       Patterns::Anything(),
-                      "f_cu of Eq. (64). Empty: f'c / 0.8 (MC2010 cylinder over "
-                      "cube strength). Units: Pa.");
+                      "f_cu of Eq. (64). Empty: the DIF reference strength / 0.8 "
+                      "(MC2010 cylinder over cube strength). Units: Pa.");
     prm.declare_entry("Strain rate filter time",
                       "5e-6",
                       Patterns::Double(0.),
@@ -302,9 +309,12 @@ namespace anvil::MaterialModel
     p.tensile_recovery     = prm.get_double("Tensile stiffness recovery");
     p.compressive_recovery = prm.get_double("Compressive stiffness recovery");
     p.rate_effects         = prm.get_bool("Strain rate effects");
-    p.cube_strength        = optional("Cube strength");
+    p.dif_strength         = optional("DIF reference strength");
+    if (p.dif_strength == 0.)
+      p.dif_strength = f_c;
+    p.cube_strength = optional("Cube strength");
     if (p.cube_strength == 0.)
-      p.cube_strength = f_c / 0.8;
+      p.cube_strength = p.dif_strength / 0.8;
     p.rate_filter_time         = prm.get_double("Strain rate filter time");
     p.erosion                  = prm.get_bool("Erosion");
     p.erosion_principal_strain = prm.get_double("Erosion principal strain");
@@ -715,7 +725,7 @@ namespace anvil::MaterialModel
         else
           h[i_rate] += (now - h[i_rate]) * dt / (par.rate_filter_time + dt);
         cdif      = ConcreteDIF::compressive(h[i_rate], par.cube_strength);
-        tdif      = ConcreteDIF::tensile(h[i_rate], par.curves.compressive_strength);
+        tdif      = ConcreteDIF::tensile(h[i_rate], par.dif_strength);
         h[i_cdif] = cdif;
         h[i_tdif] = tdif;
       }

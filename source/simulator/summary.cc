@@ -152,7 +152,7 @@ namespace anvil
       return;
     std::string message;
     record_output("plots.log");
-    const bool  ok = run_python_script("anvil_plot.py", "'" + output_directory + "'",
+    const bool  ok = run_python_script("anvil_plot.py", shell_quote(output_directory),
                                       output_directory + "/plots.log", message);
     // 'plots: energy.png, probe_x.png, ...': the pictures this run made.
     if (ok && message.rfind("plots: ", 0) == 0)

@@ -586,6 +586,64 @@ namespace anvil
   }
 
 
+  // @sect3{What a run will cost}
+  //
+  // Before a long run: the number of steps from the stable step of the
+  // initial mesh, the element-cycles, and the wall time from the cost per
+  // element-cycle measured here on 20 evaluations of the forces (elements,
+  // bars, contact) of the initial state. Nothing is written.
+  void Simulator::print_cost()
+  {
+    timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
+    make_grid();
+    setup_system();
+    setup_element_groups();
+    setup_rebar();
+    assemble_lumped_mass();
+    setup_boundary_conditions();
+    setup_rigid_bodies();
+    setup_contact();
+    setup_probes();
+    position.update_ghost_values();
+    velocity.update_ghost_values();
+    zero_forces();
+    critical_dt = compute_internal_forces(0.);
+    apply_contact(0.);
+    const double dt_stable =
+      contact_frequency_squared > 0 ?
+        1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
+        critical_dt;
+    double dt = time_step_factor * dt_stable;
+    if (max_dt_constant > 0)
+      dt = std::min(dt, max_dt_constant);
+    const double       steps    = std::ceil(end_time / dt);
+    const double       elements = triangulation.n_global_active_cells();
+    const unsigned int samples  = 20;
+    MPI_Barrier(mpi_communicator);
+    const auto start = std::chrono::steady_clock::now();
+    for (unsigned int k = 0; k < samples; ++k)
+      {
+        zero_forces();
+        compute_internal_forces(dt);
+        apply_contact(dt);
+      }
+    const double wall = Utilities::MPI::max(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mpi_communicator);
+    const double ns = 1e9 * wall / (samples * elements);
+    const double estimate = ns * 1e-9 * steps * elements;
+    pcout << std::setprecision(3) << "cost of '" << scene_name << "': " << (unsigned long)elements
+          << " elements, stable step " << dt_stable << " s (safety factor " << time_step_factor
+          << ") -> " << (unsigned long)steps << " steps to 'End time' " << end_time << " s = "
+          << steps * elements << " element-cycles\n"
+          << "  measured here: " << ns << " ns per element-cycle (forces of the initial state, "
+          << Utilities::MPI::n_mpi_processes(mpi_communicator) << " process(es)) -> about " << estimate
+          << " s (" << estimate / 60. << " min) of wall time\n"
+          << "  (the step shrinks as elements deform, materials that soften or yield cost more than "
+             "in their elastic range, and 'End kinetic energy fraction' may end the run earlier)"
+          << std::endl;
+  }
+
+
   // @sect3{The run}
   void Simulator::run(const bool resume)
   {

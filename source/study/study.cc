@@ -615,15 +615,15 @@ namespace anvil
   // executable, like the runs' own anvil_plot.py).
   void Study::write_plots() const
   {
-    std::string arguments = "'" + directory + "'";
+    std::string arguments = shell_quote(directory);
     for (const auto &v : variables)
-      arguments += " --label '" + v.name + "=" + v.label + "'";
+      arguments += " --label " + shell_quote(v.name + "=" + v.label);
     if (!history_file.empty())
       {
         std::ostringstream scale;
         scale << std::setprecision(17) << history_scale;
-        arguments += " --history '" + history_file + ":" + history_column + "' --scale " + scale.str() +
-                     " --history-label '" + history_label + "'";
+        arguments += " --history " + shell_quote(history_file + ":" + history_column) + " --scale " +
+                     scale.str() + " --history-label " + shell_quote(history_label);
       }
     std::string message;
     const bool  ok = run_python_script("anvil_study_plot.py", arguments, directory + "/plots.log", message);

@@ -6,6 +6,15 @@
 
 namespace anvil
 {
+  std::string shell_quote(const std::string &s)
+  {
+    std::string q = "'";
+    for (const char c : s)
+      q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  }
+
+
   bool run_python_script(const std::string &name,
                          const std::string &arguments,
                          const std::string &log,
@@ -20,7 +29,8 @@ namespace anvil
         return false;
       }
     const std::string python  = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::string command = python + " '" + script.string() + "' " + arguments + " > '" + log + "' 2>&1";
+    const std::string command =
+      python + " " + shell_quote(script.string()) + " " + arguments + " > " + shell_quote(log) + " 2>&1";
     const int         status  = std::system(command.c_str());
     std::ifstream     in(log);
     std::string       line;

@@ -202,4 +202,20 @@ for rate in rates:
     peak = max(d["stress_xx"])
     c.check(f"tension at {rate:g} 1/s: peak over f_t (TDIF)", peak / f_t, ref.tdif(rate, fc),
             0.02, relative=True)
+# --- One rate curve for another strength (the seed's Fig. 13a): f'c =
+# 45.4 MPa with the DIFs of 30 MPa.
+extra = "    set Strain rate effects = true\n    set DIF reference strength = 30e6\n"
+d = drive("rate_c_reference", "-0.006", rate=10.0, extra=extra)
+peak = max(-x for x in d["stress_xx"])
+c.check("compression at 10 1/s with the DIF of 30 MPa: peak over f'c", peak / fc, ref.cdif(10.0, 30e6 / 0.8),
+        0.02, relative=True)
+d = drive("rate_t_reference", f"{2 * ref.tdif(10.0, 30e6) * f_t / E:.6g}", rate=10.0, extra=extra, inc=5e-7)
+peak = max(d["stress_xx"])
+c.check("tension at 10 1/s with the DIF of 30 MPa: peak over f_t", peak / f_t, ref.tdif(10.0, 30e6),
+        0.02, relative=True)
+c.check_true("the 30 MPa curve differs from the 45.4 MPa one by more than the tolerance",
+             abs(ref.tdif(10.0, 30e6) / ref.tdif(10.0, fc) - 1) > 0.04 and
+             abs(ref.cdif(10.0, 30e6 / 0.8) / ref.cdif(10.0, fc / 0.8) - 1) > 0.04,
+             f"TDIF {ref.tdif(10.0, 30e6):.3f} vs {ref.tdif(10.0, fc):.3f}, "
+             f"CDIF {ref.cdif(10.0, 30e6 / 0.8):.3f} vs {ref.cdif(10.0, fc / 0.8):.3f}")
 c.finish()

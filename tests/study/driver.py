@@ -33,7 +33,9 @@ def study_file(name, variables, extra=""):
                 "set History label = contact force (N)\n" + extra)
         f.write("set Variables = " + ", ".join(v[0] for v in variables) + "\n")
         for name_, entry, values in variables:
-            f.write(f"subsection Variable {name_}\n  set Entry = {entry}\n  set Values = {values}\nend\n")
+            # (A label with a quote: the plots' command line must carry it.)
+            f.write(f"subsection Variable {name_}\n  set Entry = {entry}\n  set Values = {values}\n"
+                    f"  set Label = rod A's {name_}\nend\n")
     return path
 
 
@@ -122,6 +124,16 @@ r = subprocess.run([args.anvil, rod, "--set", "Simulation/End time=0.05", "--set
 s = read_csv(os.path.join(work, "output", "short", "summary.csv"))
 c.check("--set 'Simulation/End time=0.05': end time", dict(zip(s["quantity"], s["value"]))["end_time_s"],
         0.05, 1e-12)
+# --print-cost: the steps it foresees are the steps the run takes (the
+# rods' step hardly changes).
+r = subprocess.run([args.anvil, "--print-cost", rod, "--set", "Simulation/End time=0.05", "--set",
+                    "Simulation/Name=cost_only"], cwd=work,
+                   capture_output=True, text=True)
+import re  # noqa: E402
+m = re.search(r"-> (\d+) steps", r.stdout)
+c.check("--print-cost: steps foreseen against the steps of the run",
+        float(m.group(1)) if m else 0.0, dict(zip(s["quantity"], s["value"]))["steps"], 0.03, relative=True)
+c.check_true("--print-cost writes nothing", not os.path.exists(os.path.join(work, "output", "cost_only")))
 r = subprocess.run([args.anvil, rod, "--set", "Simulation/End tim=0.05"], cwd=work, capture_output=True,
                    text=True)
 c.check_true("--set with an unknown entry: exit 2, one line naming the override",

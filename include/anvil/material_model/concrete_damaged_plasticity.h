@@ -166,6 +166,9 @@ namespace anvil::MaterialModel
       double         compressive_recovery = 1;
       bool           rate_effects         = false;
       double         cube_strength        = 0;
+      /** The cylinder strength of the rate curves (TDIF; CDIF through the
+          cube strength). Units: Pa. */
+      double         dif_strength         = 0;
       double         rate_filter_time     = 0;
       bool           erosion              = false;
       double         erosion_principal_strain = 0;

@@ -113,6 +113,10 @@ namespace anvil
         contact surfaces) without running or writing: a scene check. */
     void check();
 
+    /** Estimate the run's steps, element-cycles and wall time (the cost per
+        element-cycle measured on the initial state); writes nothing. */
+    void print_cost();
+
     /** Largest relative difference of two energies tables (testing aid). */
     const Energies &get_energies() const
     {

@@ -16,6 +16,9 @@ namespace anvil
    * success; @p message is the last line the script printed (or why it could
    * not run).
    */
+  /** @p s as one word of /bin/sh (single-quoted, quotes inside escaped). */
+  std::string shell_quote(const std::string &s);
+
   bool run_python_script(const std::string &name,
                          const std::string &arguments,
                          const std::string &log,
