@@ -127,16 +127,24 @@ namespace anvil
   }
 
 
-  void Simulator::check()
+  // Everything a run, a check and a cost estimate build, in one sequence.
+  void Simulator::setup()
   {
     make_grid();
     setup_system();
     setup_element_groups();
     setup_rebar();
+    assemble_lumped_mass();
     setup_boundary_conditions();
     setup_rigid_bodies();
     setup_contact();
     setup_probes();
+  }
+
+
+  void Simulator::check()
+  {
+    setup();
     prepare_output_directory(true);
     pcout << scene_file << ": scene '" << scene_name << "' is valid: "
           << bodies.size() << " bodies, " << triangulation.n_global_active_cells()

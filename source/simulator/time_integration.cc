@@ -595,15 +595,7 @@ namespace anvil
   void Simulator::print_cost()
   {
     timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
-    make_grid();
-    setup_system();
-    setup_element_groups();
-    setup_rebar();
-    assemble_lumped_mass();
-    setup_boundary_conditions();
-    setup_rigid_bodies();
-    setup_contact();
-    setup_probes();
+    setup();
     position.update_ghost_values();
     velocity.update_ghost_values();
     zero_forces();
@@ -675,15 +667,7 @@ namespace anvil
                                           TimerOutput::wall_times);
     {
       TimerOutput::Scope t(*timer, "setup");
-      make_grid();
-      setup_system();
-      setup_element_groups();
-      setup_rebar();
-      assemble_lumped_mass();
-      setup_boundary_conditions();
-      setup_rigid_bodies();
-      setup_contact();
-      setup_probes();
+      setup();
       if (resume)
         resume_output_directory();
       else

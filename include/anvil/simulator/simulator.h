@@ -142,6 +142,10 @@ namespace anvil
                                  const std::vector<std::string> &overrides);
 
     // Setup (source/simulator/setup.cc)
+    /** Mesh, DoFs, element groups, bars, lumped mass, boundary conditions,
+        rigid bodies, contact and probes: the one sequence of run(),
+        check() and print_cost(). */
+    void setup();
     void make_grid();
     void setup_system();
     void setup_element_groups();
