@@ -6,6 +6,7 @@
 #include <anvil/kinematics/tensor3.h>
 #include <anvil/material_model/material_point_driver.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/plugins.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -29,6 +30,11 @@ namespace anvil::MaterialModel
                       Patterns::Anything(),
                       "CSV file written by the driver, relative to the working "
                       "directory.");
+    prm.declare_entry("Additional shared libraries",
+                      "",
+                      dealii::Patterns::Anything(),
+                      "Plugins to load first (shared libraries, relative to this "
+                      "file, separated by commas; doc/extending.md).");
     prm.declare_entry("Overwrite existing output",
                       "false",
                       Patterns::Bool(),
@@ -85,6 +91,21 @@ namespace anvil::MaterialModel
   {
     if (!std::filesystem::exists(file))
       throw InputError(file + ": the driver file does not exist");
+    // Plugins first: their models join the 'Model' selection.
+    {
+      dealii::ParameterHandler libraries;
+      libraries.declare_entry("Additional shared libraries", "", dealii::Patterns::Anything());
+      try
+        {
+          libraries.parse_input(file, "", true);
+        }
+      catch (const dealii::ExceptionBase &e)
+        {
+          throw InputError(file + ": " + one_line_message(e));
+        }
+      const std::string dir = std::filesystem::path(file).parent_path().string();
+      load_shared_libraries(libraries.get("Additional shared libraries"), dir.empty() ? "." : dir, file);
+    }
     dealii::ParameterHandler prm;
     declare_parameters(prm);
     try

@@ -10,6 +10,7 @@
  */
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/plugins.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
@@ -42,6 +43,12 @@ namespace anvil
     void declare_lists(dealii::ParameterHandler &prm)
     {
       using namespace dealii;
+      prm.declare_entry("Additional shared libraries",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Plugins to load before the scene is read: shared libraries "
+                        "(relative to the scene file) whose material models register "
+                        "themselves like Anvil's own (doc/extending.md).");
       prm.declare_entry("Bodies",
                         "body",
                         Patterns::List(Patterns::Anything()),
@@ -426,6 +433,10 @@ namespace anvil
     dealii::ParameterHandler lists;
     declare_lists(lists);
     parse(lists, true);
+    {
+      const std::string dir = std::filesystem::path(parameter_file).parent_path().string();
+      load_shared_libraries(lists.get("Additional shared libraries"), dir.empty() ? "." : dir, parameter_file);
+    }
     const auto body_names  = names(lists.get("Bodies"));
     const auto bc_names    = names(lists.get("Boundary conditions"));
     const auto pair_names  = names(lists.get("Contact pairs"));
