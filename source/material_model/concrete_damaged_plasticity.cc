@@ -329,6 +329,10 @@ namespace anvil::MaterialModel
   void ConcreteDamagedPlasticity::set(const Parameters &p)
   {
     par = p;
+    // Parameters set directly (tests, the driver) may leave the rate
+    // curves' strength out: f'c, as the parameter file's default.
+    if (par.dif_strength == 0.)
+      par.dif_strength = p.curves.compressive_strength;
     Elastic::set(p.density, p.curves.youngs_modulus, p.poissons_ratio);
     alpha          = (p.biaxial_ratio - 1.) / (2. * p.biaxial_ratio - 1.);
     gamma          = 3. * (1. - p.K_c) / (2. * p.K_c - 1.);

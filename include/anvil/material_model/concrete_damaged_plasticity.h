@@ -167,7 +167,7 @@ namespace anvil::MaterialModel
       bool           rate_effects         = false;
       double         cube_strength        = 0;
       /** The cylinder strength of the rate curves (TDIF; CDIF through the
-          cube strength). Units: Pa. */
+          cube strength); 0: f'c. Units: Pa. */
       double         dif_strength         = 0;
       double         rate_filter_time     = 0;
       bool           erosion              = false;
