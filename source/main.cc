@@ -21,6 +21,7 @@ namespace
     "       anvil --study STUDY.prm [--jobs N]   run a parameter study (its runs, study.csv, plots)\n"
     "       anvil --study STUDY.prm --check      check a study file and every run's entries; run nothing\n"
     "       anvil --resume SCENE.prm   continue a run from the checkpoint in its output directory\n"
+    "       anvil --resume-from DIR SCENE.prm   a new stage: SCENE from the state in checkpoint DIR\n"
     "       anvil --print-cost SCENE.prm   estimate steps, element-cycles and wall time; run nothing\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
@@ -74,6 +75,7 @@ int main(int argc, char **argv)
 
   // [--check | --material-point] FILE [--set PATH=VALUE]...
   bool                     check_only = false, driver = false, resume = false, cost = false;
+  std::string              resume_from;
   std::string              file;
   std::vector<std::string> overrides;
   for (unsigned int i = 0; i < args.size(); ++i)
@@ -88,6 +90,13 @@ int main(int argc, char **argv)
         resume = true;
       else if (a == "--print-cost" && i == 0)
         cost = true;
+      else if (a == "--resume-from" && i == 0)
+        {
+          if (i + 1 == args.size())
+            error = "option '--resume-from' needs the directory of a checkpoint";
+          else
+            resume_from = args[++i];
+        }
       else if (a == "--set")
         {
           if (i + 1 == args.size())
@@ -141,7 +150,7 @@ int main(int argc, char **argv)
       else
         {
           anvil::install_stop_handler();
-          simulator.run(resume);
+          simulator.run(resume, resume_from);
         }
     }
   catch (const anvil::InputError &e)

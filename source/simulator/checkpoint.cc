@@ -50,8 +50,9 @@ namespace anvil
     ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
       &step_change_steps &contact_frequency_squared &current_dt &step_number &time &inverted_cell
         &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &pvd_records &output_count
-          &summary &loop;
-    ar &constrained_velocity &constrained_reaction &constrained_velocity_old &bc_reaction
+          &summary &loop &peak_bc_reaction;
+    // (The prescribed velocities are the scene's, not state: a new stage may change them.)
+    ar &constrained_reaction &constrained_velocity_old &bc_reaction
       &rigid_shape_force &rigid_shape_torque &contact_results &contact_positions &contact_velocities
         &contact_forces;
     for (auto &g : element_groups)
@@ -131,19 +132,7 @@ namespace anvil
 
   void Simulator::resume_output_directory()
   {
-    const std::string dir = output_directory + "/checkpoint";
-    int               n   = -1;
-    if (std::ifstream info(dir + "/info"); info)
-      {
-        std::string word;
-        info >> word >> n;
-      }
-    if (n < 0)
-      throw InputError(scene_file + ": --resume: no checkpoint in '" + dir +
-                       "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
-    if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
-      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
-                       std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));
+    check_checkpoint(output_directory + "/checkpoint");
     // The files this run's first part wrote stay on the list.
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
@@ -156,10 +145,27 @@ namespace anvil
   }
 
 
-  void Simulator::load_checkpoint()
+  void Simulator::check_checkpoint(const std::string &dir) const
+  {
+    int n = -1;
+    if (std::ifstream info(dir + "/info"); info)
+      {
+        std::string word;
+        info >> word >> n;
+      }
+    if (n < 0)
+      throw InputError(scene_file + ": --resume: no checkpoint in '" + dir +
+                       "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
+    if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
+      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
+                       std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));
+  }
+
+
+  void Simulator::load_checkpoint(const std::string &directory, const bool new_stage)
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const std::string  file = output_directory + "/checkpoint/state." + std::to_string(rank) + ".bin";
+    const std::string  file = directory + "/state." + std::to_string(rank) + ".bin";
     std::ifstream      in(file, std::ios::binary);
     std::ostringstream data;
     data << in.rdbuf();
@@ -189,6 +195,24 @@ namespace anvil
     position.update_ghost_values();
     velocity.update_ghost_values();
     mass.update_ghost_values();
+    if (new_stage)
+      {
+        // A stage of its own: its histories, frames and figures start
+        // here; the energies (and the balance) continue.
+        summary = Summary();
+        std::fill(peak_bc_reaction.begin(), peak_bc_reaction.end(), 0.);
+        pvd_records.clear();
+        output_count       = 0;
+        loop.next_output   = time + output_interval;
+        loop.next_history  = time;
+        loop.next_progress = time;
+        loop.quiet_end     = false;
+        last_flush         = std::chrono::steady_clock::now();
+        pcout << "  a new stage from the checkpoint in " << directory << " at t = " << time << " s, step "
+              << step_number << std::endl;
+        output_results(time, "solution");
+        return;
+      }
 
     // The histories: cut back to their length at the checkpoint, then
     // appended to (rank 0).

@@ -98,6 +98,12 @@ namespace anvil
         for (unsigned int k = 0; k < reactions.size(); ++k)
           reaction_file << ',' << reactions[k];
         reaction_file << '\n';
+        peak_bc_reaction.resize(boundary_conditions.size(), 0.);
+        for (unsigned int b = 0; b < boundary_conditions.size(); ++b)
+          peak_bc_reaction[b] =
+            std::max(peak_bc_reaction[b],
+                     std::sqrt(reactions[3 * b] * reactions[3 * b] + reactions[3 * b + 1] * reactions[3 * b + 1] +
+                               reactions[3 * b + 2] * reactions[3 * b + 2]));
         for (unsigned int b = 0; b < boundary_conditions.size(); ++b)
           summary.peak_reaction =
             std::max(summary.peak_reaction,

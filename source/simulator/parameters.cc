@@ -268,6 +268,23 @@ namespace anvil
                         "0",
                         Patterns::Double(0.),
                         "Wall-clock time between checkpoints; 0: none. Units: s.");
+      prm.declare_entry("Checkpoint at end",
+                        "false",
+                        Patterns::Bool(),
+                        "Write a checkpoint when the run ends, for a next stage "
+                        "('anvil --resume-from DIR NEXT.prm').");
+      prm.declare_entry("Capacity support",
+                        "",
+                        Patterns::Anything(),
+                        "A boundary condition whose largest reaction summary.csv "
+                        "reports as axial_capacity_N (an axial push to failure); "
+                        "empty: none.");
+      prm.declare_entry("Intact axial capacity",
+                        "0",
+                        Patterns::Double(0.),
+                        "The undamaged member's capacity: summary.csv adds "
+                        "damage_index = 1 - axial_capacity_N / this (Shi, Hao and Li "
+                        "2008); 0: none. Units: N.");
       prm.declare_entry("Plots",
                         "false",
                         Patterns::Bool(),
@@ -539,6 +556,13 @@ namespace anvil
         make_plots       = prm.get_bool("Plots");
         checkpoint_interval      = prm.get_double("Checkpoint interval");
         checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
+        checkpoint_at_end        = prm.get_bool("Checkpoint at end");
+        capacity_support         = prm.get("Capacity support");
+        intact_capacity          = prm.get_double("Intact axial capacity");
+        if (!capacity_support.empty() &&
+            std::find(bc_names.begin(), bc_names.end(), capacity_support) == bc_names.end())
+          throw InputError("entry 'Simulation/Capacity support': '" + capacity_support +
+                           "' is not in 'Boundary conditions' (" + join(bc_names) + ")");
         prm.leave_subsection();
         if (time_step_factor <= 0)
           throw InputError("entry 'Simulation/Time step safety factor' must "

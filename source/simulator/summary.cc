@@ -127,6 +127,15 @@ namespace anvil
         }
       if (!boundary_conditions.empty())
         out << "peak_support_reaction_N," << summary.peak_reaction << '\n';
+      for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
+        out << "peak_reaction_" << boundary_conditions[b].name << "_N," << peak_bc_reaction[b] << '\n';
+      for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
+        if (boundary_conditions[b].name == capacity_support)
+          {
+            out << "axial_capacity_N," << peak_bc_reaction[b] << '\n';
+            if (intact_capacity > 0)
+              out << "damage_index," << 1. - peak_bc_reaction[b] / intact_capacity << '\n';
+          }
       out << "initial_energy_J," << initial_energy << '\n';
       out << "final_kinetic_energy_J," << energies.kinetic << '\n';
       out << "kinetic_energy_converted,"

@@ -637,11 +637,11 @@ namespace anvil
 
 
   // @sect3{The run}
-  void Simulator::run(const bool resume)
+  void Simulator::run(const bool resume, const std::string &resume_from)
   {
     try
       {
-        run_scene(resume);
+        run_scene(resume, resume_from);
       }
     catch (...)
       {
@@ -658,7 +658,7 @@ namespace anvil
   }
 
 
-  void Simulator::run_scene(const bool resume)
+  void Simulator::run_scene(const bool resume, const std::string &resume_from)
   {
     timer = std::make_unique<TimerOutput>(mpi_communicator,
                                           pcout,
@@ -671,7 +671,11 @@ namespace anvil
       if (resume)
         resume_output_directory();
       else
-        prepare_output_directory();
+        {
+          if (!resume_from.empty())
+            check_checkpoint(resume_from);
+          prepare_output_directory();
+        }
       position.update_ghost_values();
       velocity.update_ghost_values();
       good_position = position;
@@ -692,7 +696,9 @@ namespace anvil
     pcout << "  results in " << output_directory << "/" << std::endl;
 
     if (resume)
-      load_checkpoint();
+      load_checkpoint(output_directory + "/checkpoint", false);
+    else if (!resume_from.empty())
+      load_checkpoint(resume_from, true);
     else
       {
         // Step 0: forces of the initial state (stress free), energy E_0.
@@ -847,6 +853,14 @@ namespace anvil
     if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
       throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
                                                  output_failure);
+    // The last step synchronised the velocities to the end time: a next
+    // stage starts from them as a run starts from its initial state (a
+    // half step first), so the checkpoint says the previous step was 0.
+    if (checkpoint_at_end)
+      {
+        loop.dt_previous = 0;
+        write_checkpoint();
+      }
     write_body_summary();
     write_summary(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
     write_plots();

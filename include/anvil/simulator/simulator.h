@@ -106,8 +106,12 @@ namespace anvil
     static void print_parameters(std::ostream &out);
 
     /** Run the scene to its end time; with @p resume, continue from the
-        checkpoint in its output directory (same number of processes). */
-    void run(bool resume = false);
+        checkpoint in its output directory (same number of processes), or
+        with @p resume_from, start a new stage in this scene's (fresh)
+        output directory from the checkpoint in that directory: the state
+        of another run, continued under this scene's boundary conditions,
+        loads and end (doc/user_guide.md, "Stages"). */
+    void run(bool resume = false, const std::string &resume_from = "");
 
     /** Build everything a run needs (mesh, DoFs, boundary conditions,
         contact surfaces) without running or writing: a scene check. */
@@ -172,7 +176,7 @@ namespace anvil
     void prepare_output_directory(bool check_only = false);
 
     // The explicit step (source/simulator/time_integration.cc)
-    void   run_scene(bool resume);
+    void   run_scene(bool resume, const std::string &resume_from);
 
     // Checkpoints (source/simulator/checkpoint.cc)
     /** Every piece of state a step changes, in one order for writing and
@@ -181,10 +185,23 @@ namespace anvil
     /** OUTPUT/NAME/checkpoint/: state.R.bin per process and info, written
         as checkpoint.new and renamed (the previous one stays until then). */
     void write_checkpoint();
-    void load_checkpoint();
+    /** Load the checkpoint in @p directory; @p new_stage: the histories,
+        frames and summary start afresh (a stage of its own). */
+    void load_checkpoint(const std::string &directory, bool new_stage);
+    /** The checkpoint in @p directory exists and was written by as many
+        processes as this run has; InputError otherwise. */
+    void check_checkpoint(const std::string &directory) const;
     /** For --resume: the output directory must hold a checkpoint; nothing
         is deleted, the run's file list is read back. */
     void resume_output_directory();
+    bool      checkpoint_at_end = false;
+    /** Capacity: the boundary condition whose peak reaction summary.csv
+        reports as axial_capacity_N, and the intact member's capacity for
+        damage_index = 1 - capacity / intact (0: none). */
+    std::string capacity_support;
+    double      intact_capacity = 0;
+    /** Per boundary condition, the largest reaction magnitude so far. */
+    std::vector<double> peak_bc_reaction;
     /** The loop's own schedule (what the step, outputs and end criterion
         have reached). */
     struct LoopState
