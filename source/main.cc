@@ -27,6 +27,7 @@ namespace
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
     "       anvil --print-parameters --material-point   the same for driver files\n"
+    "       anvil --print-parameters --study            the same for study files\n"
     "       anvil --help               this text\n"
     "Exit status: 0 success, 2 bad input, 3 numerical failure, 4 results could not be written,\n"
     "             5 stopped by SIGTERM/SIGINT after writing a checkpoint, 1 other errors.\n";
@@ -41,6 +42,11 @@ int main(int argc, char **argv)
   // from a clean environment.
   if (!args.empty() && args[0] == "--study")
     return anvil::Study::main(args);
+  if (args.size() == 2 && args[0] == "--print-parameters" && args[1] == "--study")
+    {
+      anvil::Study::print_parameters(std::cout);
+      return 0;
+    }
 
   // Past a file-size limit a write fails (and is reported) instead of the
   // signal killing the run.

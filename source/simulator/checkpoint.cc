@@ -78,14 +78,18 @@ namespace anvil
                                                  output_failure);
     StateArchive ar;
     serialize(ar);
-    // History lengths and open files (rank 0's; -1: not open).
-    std::vector<long> lengths;
+    // The open histories (rank 0's): file name and length; -1: not open.
+    std::vector<long>        lengths;
+    std::vector<std::string> names;
     std::vector<unsigned int> counts{(unsigned int)probe_files.size(), (unsigned int)contact_files.size(),
                                      (unsigned int)rigid_files.size(), (unsigned int)rebar_files.size()};
     for (auto *f : history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
                                  contact_files, rigid_files, rebar_files))
-      lengths.push_back(f->is_open() ? f->bytes_written() : -1);
-    ar &counts &lengths;
+      {
+        lengths.push_back(f->is_open() ? f->bytes_written() : -1);
+        names.push_back(f->is_open() ? fs::path(f->file()).filename().string() : "");
+      }
+    ar &counts &lengths &names;
 
     if (rank == 0)
       {
@@ -176,11 +180,12 @@ namespace anvil
     StateArchive              ar(data.str());
     std::vector<unsigned int> counts;
     std::vector<long>         lengths;
+    std::vector<std::string>  names;
     std::string               failure;
     try
       {
         serialize(ar);
-        ar &counts &lengths;
+        ar &counts &lengths &names;
         if (!ar.exhausted())
           failure = "longer than the state of this scene";
       }
@@ -222,16 +227,6 @@ namespace anvil
         contact_files.resize(counts[1]);
         rigid_files.resize(counts[2]);
         rebar_files.resize(counts[3]);
-        std::vector<std::string> names{"energy.csv", "momentum.csv", "reactions.csv", "erosion.csv"};
-        for (const auto &p : probes)
-          names.push_back("probe_" + p.name + ".csv");
-        for (const auto &c : contact_pairs)
-          names.push_back("contact_" + c.name + ".csv");
-        for (const auto &b : bodies)
-          if (b.is_rigid())
-            names.push_back("rigid_" + b.name + ".csv");
-        for (const auto &l : rebar_layouts)
-          names.push_back("rebar_" + l.name + ".csv");
         const auto files = history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
                                          contact_files, rigid_files, rebar_files);
         for (unsigned int k = 0; k < files.size() && k < lengths.size(); ++k)

@@ -11,10 +11,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <filesystem>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>

@@ -12,9 +12,11 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -69,8 +71,10 @@ namespace anvil
         if (!r.eroded_elements.empty())
           record_erosion(g, r.eroded_elements, eroded_info);
       }
-    std::vector<double> increments = {d_int, d_hg, d_eroded, double(eroded.size()), d_visc};
-    Utilities::MPI::sum(increments, mpi_communicator, increments);
+    std::array<double, 5> increments{{d_int, d_hg, d_eroded, double(eroded.size()), d_visc}};
+    Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
+                        mpi_communicator,
+                        ArrayView<double>(increments.data(), increments.size()));
     // Reinforcement: replicated on every process, its energy counted once.
     if (!rebars.empty())
       dt_crit = std::min(dt_crit, compute_rebar_forces(dt_previous));
@@ -420,11 +424,13 @@ namespace anvil
                                                         last_checkpoint_wall)
                               .count() >= checkpoint_wall_interval &&
                           Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    std::vector<double> flags{double(inverted_cell),
-                              output_failure.empty() ? 0. : 1.,
-                              wall_due ? 1. : 0.,
-                              stop_signal_received() ? 1. : 0.};
-    Utilities::MPI::max(flags, mpi_communicator, flags);
+    std::array<double, 4> flags{{double(inverted_cell),
+                                 output_failure.empty() ? 0. : 1.,
+                                 wall_due ? 1. : 0.,
+                                 stop_signal_received() ? 1. : 0.}};
+    Utilities::MPI::max(ArrayView<const double>(flags.data(), flags.size()),
+                        mpi_communicator,
+                        ArrayView<double>(flags.data(), flags.size()));
     if (flags[2] != 0)
       checkpoint_due = true;
     if (flags[3] != 0)
@@ -586,6 +592,18 @@ namespace anvil
   }
 
 
+  // The stable step (seed section 3.6) of the elements' critical step: with
+  // contact springs of frequency omega_c on top of the elements' omega_e =
+  // 2 / dt_e it is 2 / sqrt(omega_e^2 + omega_c^2) (seed section 4.3: large
+  // penalty factors need smaller steps).
+  double Simulator::stable_time_step() const
+  {
+    return contact_frequency_squared > 0 ?
+             1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
+             critical_dt;
+  }
+
+
   // @sect3{What a run will cost}
   //
   // Before a long run: the number of steps from the stable step of the
@@ -601,11 +619,8 @@ namespace anvil
     zero_forces();
     critical_dt = compute_internal_forces(0.);
     apply_contact(0.);
-    const double dt_stable =
-      contact_frequency_squared > 0 ?
-        1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
-        critical_dt;
-    double dt = time_step_factor * dt_stable;
+    const double dt_stable = stable_time_step();
+    double       dt        = time_step_factor * dt_stable;
     if (max_dt_constant > 0)
       dt = std::min(dt, max_dt_constant);
     const double       steps    = std::ceil(end_time / dt);
@@ -746,16 +761,9 @@ namespace anvil
     while (true)
       {
         const bool last = time >= end_time - eps || quiet_end;
-        // The stable step from the current configuration (seed section
-        // 3.6); the last step only synchronises the velocity.
-        // With contact springs of frequency omega_c on top of the elements'
-        // omega_e = 2 / dt_e, the stable step is 2 / sqrt(omega_e^2 +
-        // omega_c^2) (seed section 4.3: large penalty factors need smaller
-        // steps).
-        const double dt_stable =
-          contact_frequency_squared > 0 ?
-            1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
-            critical_dt;
+        // The stable step from the current configuration; the last step
+        // only synchronises the velocity.
+        const double dt_stable = stable_time_step();
         current_dt = last ? dt_previous : std::min(time_step_factor * dt_stable, end_time - time);
         if (!last)
           {

@@ -135,11 +135,11 @@ namespace anvil
                         "1",
                         Patterns::Integer(1),
                         "MPI processes of each run; more than 1 starts it with "
-                        "'MPI launcher'.");
+                        "'MPI launcher'. Units: none.");
       prm.declare_entry("Jobs",
                         "1",
                         Patterns::Integer(1),
-                        "Runs at a time ('--jobs N' on the command line wins).");
+                        "Runs at a time ('--jobs N' on the command line wins). Units: none.");
       prm.declare_entry("MPI launcher",
                         "mpirun -np",
                         Patterns::Anything(),
@@ -154,7 +154,7 @@ namespace anvil
       prm.declare_entry("History scale",
                         "1",
                         Patterns::Double(),
-                        "Factor on the plotted history (1e3: m to mm).");
+                        "Factor on the plotted history (1e3: m to mm). Units: none.");
       prm.declare_entry("History label",
                         "",
                         Patterns::Anything(),
@@ -190,6 +190,16 @@ namespace anvil
         }
     }
   } // namespace
+
+
+  void Study::print_parameters(std::ostream &out)
+  {
+    dealii::ParameterHandler prm;
+    declare_parameters(prm, {"NAME"});
+    prm.print_parameters(out,
+                         dealii::ParameterHandler::OutputStyle::PRM |
+                           dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
+  }
 
 
   Study::Study(const std::string &study_file)
@@ -483,8 +493,13 @@ namespace anvil
             const unsigned int r = next++;
             if (finished_earlier(runs[r]))
               {
+                // It keeps the wall time of the invocation that ran it.
+                std::istringstream status(read_file(fs::path(directory) / runs[r].name / "run.status"));
+                std::string        word;
+                while (status >> word)
+                  if (word == "wall")
+                    status >> runs[r].wall_time;
                 runs[r].status  = 0;
-                runs[r].skipped = true;
                 ++done;
                 report(r, "finished earlier: skipped");
                 continue;
@@ -572,17 +587,6 @@ namespace anvil
               quantities.push_back(q);
             values[r][q] = line.substr(comma + 1);
           }
-        // Runs finished earlier keep their first wall time.
-        if (runs[r].skipped)
-          {
-            std::istringstream status(read_file(fs::path(directory) / runs[r].name / "run.status"));
-            std::string        word;
-            double             wall = 0;
-            while (status >> word)
-              if (word == "wall")
-                status >> wall;
-            values[r]["#wall"] = std::to_string(wall);
-          }
       }
     std::ostringstream out;
     out << std::setprecision(10) << "run,exit_status,run_wall_time_s";
@@ -595,7 +599,7 @@ namespace anvil
       {
         const Run &run = runs[r];
         out << run.name << ',' << run.status << ','
-            << (run.skipped ? values[r]["#wall"] : std::to_string(run.wall_time));
+            << run.wall_time;
         for (unsigned int v = 0; v < variables.size(); ++v)
           out << ',' << csv_field(variables[v].values[run.choice[v]]) << ','
               << variables[v].plot_values[run.choice[v]];

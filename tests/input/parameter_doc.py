@@ -20,6 +20,11 @@ with open(os.path.join(args.source_dir, "doc/material_point_parameters.prm")) as
     c.check_true("doc/material_point_parameters.prm equals anvil --print-parameters --material-point",
                  driver == f.read(), "run scripts/make-parameter-doc")
 printed += driver
+study = subprocess.run([args.anvil, "--print-parameters", "--study"], capture_output=True, text=True).stdout
+with open(os.path.join(args.source_dir, "doc/study_parameters.prm")) as f:
+    c.check_true("doc/study_parameters.prm equals anvil --print-parameters --study",
+                 study == f.read() and "Variable NAME" in study, "run scripts/make-parameter-doc")
+printed += study
 
 # Every numeric entry (pattern Double or Integer) must say 'Units:'.
 missing = []

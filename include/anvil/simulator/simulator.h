@@ -177,6 +177,9 @@ namespace anvil
 
     // The explicit step (source/simulator/time_integration.cc)
     void   run_scene(bool resume, const std::string &resume_from);
+    /** The stable step of the current critical element step and the
+        contact springs (before the safety factor). */
+    double stable_time_step() const;
 
     // Checkpoints (source/simulator/checkpoint.cc)
     /** Every piece of state a step changes, in one order for writing and

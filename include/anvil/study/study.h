@@ -6,6 +6,7 @@
  */
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ namespace anvil
         some runs failed (study.csv says which). */
     static int main(const std::vector<std::string> &args);
 
+    /** Every entry of a study file, with default, pattern and
+        documentation (.prm syntax). */
+    static void print_parameters(std::ostream &out);
+
     struct Variable
     {
       std::string              name;
@@ -48,7 +53,6 @@ namespace anvil
       std::vector<std::string> overrides;
       int                      status    = -1;
       double                   wall_time = 0;
-      bool                     skipped   = false;
     };
 
   private:

@@ -60,6 +60,11 @@ namespace anvil
       return written;
     }
 
+    const std::string &file() const
+    {
+      return path;
+    }
+
     /** Continue a file a checkpoint recorded at @p length bytes: cut it back
         to that length and append. */
     void resume(const std::string &path, long length);
