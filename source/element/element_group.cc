@@ -905,47 +905,6 @@ namespace anvil::Element
                 D[4][l] = 0.5 * (L[1][2][l] + L[2][1][l]);
                 D[5][l] = 0.5 * (L[0][2][l] + L[2][0][l]);
               }
-            if (material.has_tensorial_history())
-              for (unsigned int l = 0; l < n_valid; ++l)
-                material.rotate_history(0.5 * (L[0][1][l] - L[1][0][l]),
-                                        0.5 * (L[1][2][l] - L[2][1][l]),
-                                        0.5 * (L[0][2][l] - L[2][0][l]),
-                                        dt,
-                                        n_hist ? &history[n_hist * el[l]] : nullptr);
-            // Hughes-Winget rotation, as rotate_stress() but across lanes.
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                const double h   = 0.25 * dt;
-                const double k0  = -h * (L[1][2][l] - L[2][1][l]);
-                const double k1  = h * (L[0][2][l] - L[2][0][l]);
-                const double k2  = -h * (L[0][1][l] - L[1][0][l]);
-                const double kk  = k0 * k0 + k1 * k1 + k2 * k2;
-                const double cf  = 2. / (1. + kk);
-                const double Q00 = 1. + cf * (k0 * k0 - kk), Q11 = 1. + cf * (k1 * k1 - kk),
-                             Q22 = 1. + cf * (k2 * k2 - kk);
-                const double Q01 = cf * (-k2 + k0 * k1), Q10 = cf * (k2 + k0 * k1);
-                const double Q02 = cf * (k1 + k0 * k2), Q20 = cf * (-k1 + k0 * k2);
-                const double Q12 = cf * (-k0 + k1 * k2), Q21 = cf * (k0 + k1 * k2);
-                const double S00 = sig[0][l], S11 = sig[1][l], S22 = sig[2][l], S01 = sig[3][l],
-                             S12 = sig[4][l], S02 = sig[5][l];
-                // T = Q S
-                const double T00 = Q00 * S00 + Q01 * S01 + Q02 * S02;
-                const double T01 = Q00 * S01 + Q01 * S11 + Q02 * S12;
-                const double T02 = Q00 * S02 + Q01 * S12 + Q02 * S22;
-                const double T10 = Q10 * S00 + Q11 * S01 + Q12 * S02;
-                const double T11 = Q10 * S01 + Q11 * S11 + Q12 * S12;
-                const double T12 = Q10 * S02 + Q11 * S12 + Q12 * S22;
-                const double T20 = Q20 * S00 + Q21 * S01 + Q22 * S02;
-                const double T21 = Q20 * S01 + Q21 * S11 + Q22 * S12;
-                const double T22 = Q20 * S02 + Q21 * S12 + Q22 * S22;
-                // sigma = T Q^T
-                sig[0][l] = T00 * Q00 + T01 * Q01 + T02 * Q02;
-                sig[1][l] = T10 * Q10 + T11 * Q11 + T12 * Q12;
-                sig[2][l] = T20 * Q20 + T21 * Q21 + T22 * Q22;
-                sig[3][l] = T00 * Q10 + T01 * Q11 + T02 * Q12;
-                sig[4][l] = T10 * Q20 + T11 * Q21 + T12 * Q22;
-                sig[5][l] = T00 * Q20 + T01 * Q21 + T02 * Q22;
-              }
             // Padding lanes work on a scratch copy of the history, so that
             // the repeated last element is updated once only.
             double *hist[W];
@@ -961,7 +920,19 @@ namespace anvil::Element
                     hist[l] = &scratch_history[n_hist * (l - n_valid)];
                   }
               }
-            material.update_cauchy_stress_batch(D, dt, sig, hist);
+            // Spin W_01, W_12, W_02; the Hughes-Winget rotation of the
+            // stress across lanes (the material rotates its own history).
+            alignas(64) double spin[3][W];
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                spin[0][l] = 0.5 * (L[0][1][l] - L[1][0][l]);
+                spin[1][l] = 0.5 * (L[1][2][l] - L[2][1][l]);
+                spin[2][l] = 0.5 * (L[0][2][l] - L[2][0][l]);
+              }
+            for (unsigned int l = 0; l < W; ++l)
+              Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l],
+                                        sig[1][l], sig[2][l], sig[3][l], sig[4][l], sig[5][l]);
+            material.update_cauchy_stress_batch(D, spin, dt, sig, hist);
             for (unsigned int l = 0; l < W; ++l)
               trD[l] = D[0][l] + D[1][l] + D[2][l];
             for (unsigned int l = 0; l < W; ++l)

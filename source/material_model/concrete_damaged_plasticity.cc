@@ -345,16 +345,13 @@ namespace anvil::MaterialModel
 
   std::vector<std::string> ConcreteDamagedPlasticity::history_names() const
   {
-    std::vector<std::string> names = {"tensile_damage",
-                                      "compressive_damage",
-                                      "damage",
-                                      "tensile_equivalent_plastic_strain",
-                                      "compressive_equivalent_plastic_strain",
-                                      "dissipated_energy_density",
-                                      "",
-                                      "",
-                                      "",
-                                      ""};
+    std::vector<std::string> names(n_ul_history + 2);
+    names[i_tensile_damage]     = "tensile_damage";
+    names[i_compressive_damage] = "compressive_damage";
+    names[i_damage]             = "damage";
+    names[i_kappa_t]            = "tensile_equivalent_plastic_strain";
+    names[i_kappa_c]            = "compressive_equivalent_plastic_strain";
+    names[i_dissipation]        = "dissipated_energy_density";
     if (par.rate_effects)
       {
         names[i_rate] = "strain_rate";
@@ -367,12 +364,27 @@ namespace anvil::MaterialModel
   }
 
 
+  double ConcreteDamagedPlasticity::history_value(const double *h, const unsigned int k) const
+  {
+    const double rate = std::max(h[i_rate], 0.);
+    if (k == i_rate)
+      return rate;
+    if (k == i_cdif)
+      return par.rate_effects ? ConcreteDIF::compressive(rate, par.cube_strength) : 1.;
+    if (k == i_tdif)
+      return par.rate_effects ? ConcreteDIF::tensile(rate, par.dif_strength) : 1.;
+    return h[k];
+  }
+
+
   void ConcreteDamagedPlasticity::initialize_history(double *h, const PointData &data) const
   {
     h[i_length]          = data.characteristic_length;
     h[i_strength_factor] = data.strength_factor;
-    h[i_cdif]            = 1.;
-    h[i_tdif]            = 1.;
+    h[i_rate]            = -1.;
+    double d;
+    tension(0., h[i_length], h[i_strength_factor], d, h[i_tensile_cohesion]);
+    compression(0., h[i_strength_factor], d, h[i_compressive_cohesion]);
   }
 
 
@@ -683,6 +695,10 @@ namespace anvil::MaterialModel
 
 
   // @sect3{The stress update}
+  //
+  // The one-point form (the reference kernels, the material-point driver)
+  // and the batched form (the fast element loop) share everything after
+  // the elastic trial and the rate filter: the inelastic part.
   void ConcreteDamagedPlasticity::update_cauchy_stress(const double *D,
                                                        const double  dt,
                                                        double       *stress,
@@ -690,10 +706,10 @@ namespace anvil::MaterialModel
   {
     // Stored energy sigma : C^-1 : sigma_bar / 2 before the step, for the
     // dissipation.
-    const bool   viscous    = par.viscosity > 0 && dt > 0;
-    double      *sref       = h + (viscous ? i_viscous_stress : i_effective_stress);
-    const double stored_old = stored_energy(stress, sref);
-    double       old_stress[6];
+    const bool    viscous    = par.viscosity > 0 && dt > 0;
+    const double *sref       = h + (viscous ? i_viscous_stress : i_effective_stress);
+    const double  stored_old = stored_energy(stress, sref);
+    double        old_stress[6];
     std::copy(stress, stress + 6, old_stress);
 
     // Elastic increment of the effective stress.
@@ -705,42 +721,65 @@ namespace anvil::MaterialModel
     for (unsigned int k = 0; k < 6; ++k)
       sbar[k] += dsig[k];
 
-    if (par.erosion_principal_strain > 0)
-      {
-        double *eps = h + i_strain;
-        for (unsigned int k = 0; k < 6; ++k)
-          eps[k] += D[k] * dt;
-        double e[3];
-        Kinematics::principal_values(eps, e);
-        h[i_max_strain] = e[0];
-      }
-
-    double cdif = 1., tdif = 1.;
+    track_strain(D, dt, h);
     if (par.rate_effects && dt > 0)
       {
-        double d[3];
-        Kinematics::principal_values(D, d);
-        const double now = std::max(std::abs(d[0]), std::abs(d[2]));
-        if (h[i_rate_started] == 0.)
-          {
-            h[i_rate]         = now;
-            h[i_rate_started] = 1.;
-          }
-        else
-          h[i_rate] += (now - h[i_rate]) * dt / (par.rate_filter_time + dt);
-        cdif      = ConcreteDIF::compressive(h[i_rate], par.cube_strength);
-        tdif      = ConcreteDIF::tensile(h[i_rate], par.dif_strength);
-        h[i_cdif] = cdif;
-        h[i_tdif] = tdif;
+        double largest, smallest;
+        Kinematics::extreme_principal_values(D[0], D[1], D[2], D[3], D[4], D[5], largest, smallest);
+        filter_rate(std::max(std::abs(largest), std::abs(smallest)), dt, h);
       }
+    inelastic_update(D, dt, dsig, old_stress, stored_old, stress, h);
+  }
 
-    double principal[3];
+
+  void ConcreteDamagedPlasticity::track_strain(const double *D, const double dt, double *h) const
+  {
+    if (!(par.erosion_principal_strain > 0))
+      return;
+    double *eps = h + i_strain;
+    for (unsigned int k = 0; k < 6; ++k)
+      eps[k] += D[k] * dt;
+    double e[3];
+    Kinematics::principal_values(eps, e);
+    h[i_max_strain] = e[0];
+  }
+
+
+  // The largest principal strain rate, low-pass filtered; the first step
+  // starts the filter at its own rate (no ramp from zero).
+  void ConcreteDamagedPlasticity::filter_rate(const double now, const double dt, double *h) const
+  {
+    if (h[i_rate] < 0)
+      h[i_rate] = now;
+    else
+      h[i_rate] += (now - h[i_rate]) * dt / (par.rate_filter_time + dt);
+  }
+
+
+  // Everything after the elastic trial (in h's effective stress): the
+  // return to the surfaces at the dynamic cohesions, damage, the nominal
+  // stress and the dissipation.
+  void ConcreteDamagedPlasticity::inelastic_update(const double *D,
+                                                   const double  dt,
+                                                   const double *dsig,
+                                                   const double *old_stress,
+                                                   const double  stored_old,
+                                                   double       *stress,
+                                                   double       *h) const
+  {
+    const bool   viscous = par.viscosity > 0 && dt > 0;
+    const bool   rate    = par.rate_effects && dt > 0;
+    const double cdif    = rate ? ConcreteDIF::compressive(h[i_rate], par.cube_strength) : 1.;
+    const double tdif    = rate ? ConcreteDIF::tensile(h[i_rate], par.dif_strength) : 1.;
+    double      *sref    = h + (viscous ? i_viscous_stress : i_effective_stress);
+    double      *sbar    = h + i_effective_stress;
+    double       principal[3];
     return_map(sbar, h, cdif, tdif, principal);
 
     // Damage, the scalar of ABAQUS: 1 - d = (1 - s_t d_c)(1 - s_c d_t).
-    double d_t, d_c, c_t, c_c;
-    tension(h[i_kappa_t], h[i_length], h[i_strength_factor], d_t, c_t);
-    compression(h[i_kappa_c], h[i_strength_factor], d_c, c_c);
+    double d_t, d_c;
+    tension(h[i_kappa_t], h[i_length], h[i_strength_factor], d_t, h[i_tensile_cohesion]);
+    compression(h[i_kappa_c], h[i_strength_factor], d_c, h[i_compressive_cohesion]);
     if (viscous)
       {
         // Duvaut-Lions: the viscous state relaxes towards the inviscid one.
@@ -781,14 +820,193 @@ namespace anvil::MaterialModel
   }
 
 
-  double ConcreteDamagedPlasticity::stored_energy(const double *sigma, const double *sbar) const
+  // @sect3{The batched stress update}
+  //
+  // Most of a structure's concrete is loaded inside its current surfaces at
+  // any time (cracked or crushed a little, perhaps, but not yielding in this
+  // step). For such a point the update is the elastic trial and the damage
+  // combination of the existing d_t and d_c; the batch computes these, the
+  // rate filter and the test across its points, and hands only the others
+  // to the one-point inelastic update.
+  //
+  // The test runs in two stages. First at the cohesions without rate
+  // effects, kept in the history: the dynamic increase factors are at least
+  // 1, and F does not grow with either cohesion while s_max <= c_t (dF/dc_c
+  // = s_max / c_t - 1, dF/dc_t = -c_c s_max / c_t^2), so a trial inside both
+  // surfaces at the static cohesions is inside them at the dynamic ones:
+  // such points need no DIF (two pow per point). The others, with rate
+  // effects, are tested again at the dynamic cohesions. Both stages demand
+  // a margin of 1e-7 of the largest principal value (the principal values
+  // here and in the one-point return differ by round-off, up to sqrt of it
+  // for a double eigenvalue): a point the test passes is elastic in the
+  // one-point update too. The choice depends on the point's own state only,
+  // never on its lane.
+  //
+  // Where the principal effective stresses have both signs the combination
+  // acts per direction (see the header): sigma = f_- sigma_bar + (f_+ - f_-)
+  // sum_{s_i > 0} s_i P_i, with the eigenprojection of the one principal
+  // value whose sign differs from the middle one's, P_1 = (A - s_2)(A - s_3)
+  // / ((s_1 - s_2)(s_1 - s_3)): well conditioned, since s_1 - s_2 >= s_1 when
+  // s_2 <= 0 < s_1 (and likewise for s_3), so no eigenvectors are needed.
+  void ConcreteDamagedPlasticity::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                                             const double (&spin)[3][batch_size],
+                                                             const double dt,
+                                                             double (&s)[6][batch_size],
+                                                             double *const (&h)[batch_size]) const
   {
-    const double nu  = par.poissons_ratio;
-    const double tr  = sbar[0] + sbar[1] + sbar[2];
-    double       sum = 0;
-    for (unsigned int k = 0; k < 6; ++k)
-      sum += (k < 3 ? 1. : 2.) * sigma[k] * ((1. + nu) * sbar[k] - (k < 3 ? nu * tr : 0.));
-    return 0.5 * sum / youngs_modulus();
+    constexpr unsigned int W = batch_size;
+    if (par.viscosity > 0 || par.erosion_principal_strain > 0 || !(dt > 0))
+      {
+        Interface::update_cauchy_stress_batch(D, spin, dt, s, h);
+        return;
+      }
+
+    alignas(64) double sbar[6][W], dsig[6][W], stored_old[W], rate[W], hv[6][W], nominal[6][W];
+    alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
+      mean_stress[W], now[W];
+    alignas(64) double elastic[W]; // 1: inside the surfaces
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        for (unsigned int k = 0; k < 6; ++k)
+          sbar[k][l] = h[l][i_effective_stress + k];
+        // kappa_t, kappa_c, c_t, c_c, d_t, d_c
+        for (unsigned int k = 0; k < 6; ++k)
+          hv[k][l] = h[l][i_kappa_t + k];
+        dissipation[l] = h[l][i_dissipation];
+        rate[l]        = h[l][i_rate];
+      }
+    // The effective stress rotates with the material, like the stress.
+    for (unsigned int l = 0; l < W; ++l)
+      Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sbar[0][l], sbar[1][l],
+                                sbar[2][l], sbar[3][l], sbar[4][l], sbar[5][l]);
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
+                                      sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
+                                      sbar[5][l]);
+        const double tr = D[0][l] + D[1][l] + D[2][l];
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
+            sbar[k][l] += dsig[k][l];
+          }
+
+        // The trial's principal values and the two surfaces at the static
+        // cohesions.
+        double s1, s3;
+        Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
+                                             sbar[4][l], sbar[5][l], s1, s3);
+        const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
+        const double s2   = 3. * mean - s1 - s3;
+        const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
+        const double q =
+          std::sqrt(1.5 * (a * a + b * b + c * c) +
+                    3. * (sbar[3][l] * sbar[3][l] + sbar[4][l] * sbar[4][l] + sbar[5][l] * sbar[5][l]));
+        // Inside at the static cohesions (first stage; see above), with a
+        // margin for the round-off of the principal values.
+        margin[l] = 1e-7 * std::max(std::abs(s1), std::abs(s3));
+        largest[l] = s1;
+        von_mises[l] = q;
+        mean_stress[l] = mean;
+        const bool inside = inside_surfaces(q, mean, s1, hv[2][l], hv[3][l], margin[l]);
+
+        // Damage of the existing d_t, d_c at the trial: tension weight r.
+        const double d_t = hv[4][l], d_c = hv[5][l];
+        const double num = std::max(s1, 0.) + std::max(s2, 0.) + std::max(s3, 0.);
+        const double den = std::abs(s1) + std::abs(s2) + std::abs(s3);
+        const double r   = den > 0 ? num / den : 0.;
+        auto intact = [&](const double w) {
+          return (1. - (1. - par.tensile_recovery * w) * d_c) *
+                 (1. - (1. - par.compressive_recovery * (1. - w)) * d_t);
+        };
+        damage[l]           = 1. - intact(r);
+        const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
+        const double f_plus = intact(1.), f_minus = intact(0.);
+        // sum_{s_i > 0} s_i P_i from the lonely principal value.
+        const bool   two_positive = s2 > 0;
+        const double sl = two_positive ? s3 : s1, so1 = two_positive ? s1 : s2,
+                     so2 = two_positive ? s2 : s3;
+        const double denom = (sl - so1) * (sl - so2);
+        const double g     = mixed ? sl / denom : 0.;
+        // A^2 - (so1 + so2) A + so1 so2 I, A = sbar.
+        const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
+                     x4 = sbar[4][l], x5 = sbar[5][l];
+        const double sum = so1 + so2, prod = so1 * so2;
+        const double P[6] = {x0 * x0 + x3 * x3 + x5 * x5 - sum * x0 + prod,
+                             x3 * x3 + x1 * x1 + x4 * x4 - sum * x1 + prod,
+                             x5 * x5 + x4 * x4 + x2 * x2 - sum * x2 + prod,
+                             x0 * x3 + x3 * x1 + x5 * x4 - sum * x3,
+                             x3 * x5 + x1 * x4 + x4 * x2 - sum * x4,
+                             x0 * x5 + x3 * x4 + x5 * x2 - sum * x5};
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            const double positive = two_positive ? sbar[k][l] - g * P[k] : g * P[k];
+            nominal[k][l] = mixed ? f_minus * sbar[k][l] + (f_plus - f_minus) * positive :
+                                    (1. - damage[l]) * sbar[k][l];
+          }
+        double work = 0;
+        for (unsigned int k = 0; k < 6; ++k)
+          work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
+        dissipation[l] += work -
+                          stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
+                                        nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
+                          stored_old[l];
+        elastic[l] = inside ? 1. : 0.;
+      }
+    if (par.rate_effects)
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          double largest, smallest;
+          Kinematics::extreme_principal_values(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l],
+                                               largest, smallest);
+          now[l] = std::max(std::abs(largest), std::abs(smallest));
+        }
+    // filter_rate() across lanes.
+    const double weight = dt / (par.rate_filter_time + dt);
+    for (unsigned int l = 0; l < W; ++l)
+      rate[l] = rate[l] < 0 ? now[l] : rate[l] + (now[l] - rate[l]) * weight;
+
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        double *hl = h[l];
+        for (unsigned int k = 0; k < 6; ++k)
+          hl[i_effective_stress + k] = sbar[k][l];
+        double d[6];
+        for (unsigned int k = 0; k < 6; ++k)
+          d[k] = D[k][l];
+        if (par.rate_effects)
+          {
+            hl[i_rate] = rate[l];
+            // Second stage: outside at the static cohesions, perhaps inside
+            // at the dynamic ones.
+            if (elastic[l] == 0.)
+              elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], largest[l],
+                                           ConcreteDIF::tensile(hl[i_rate], par.dif_strength) *
+                                             hl[i_tensile_cohesion],
+                                           ConcreteDIF::compressive(hl[i_rate], par.cube_strength) *
+                                             hl[i_compressive_cohesion],
+                                           margin[l]);
+          }
+        if (elastic[l] != 0.)
+          {
+            hl[i_damage]      = damage[l];
+            hl[i_dissipation] = dissipation[l];
+            for (unsigned int k = 0; k < 6; ++k)
+              s[k][l] = nominal[k][l];
+          }
+        else
+          {
+            double ds[6], old[6], st[6];
+            for (unsigned int k = 0; k < 6; ++k)
+              {
+                ds[k]  = dsig[k][l];
+                old[k] = s[k][l];
+              }
+            inelastic_update(d, dt, ds, old, stored_old[l], st, hl);
+            for (unsigned int k = 0; k < 6; ++k)
+              s[k][l] = st[k];
+          }
+      }
   }
 
 

@@ -65,6 +65,7 @@ namespace anvil::MaterialModel
 
 
   void Elastic::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                           const double (&)[3][batch_size],
                                            const double dt,
                                            double (&stress)[6][batch_size],
                                            double *const (&)[batch_size]) const

@@ -23,12 +23,16 @@ namespace anvil
 
 
     void Interface::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                               const double (&spin)[3][batch_size],
                                                const double dt,
                                                double (&stress)[6][batch_size],
                                                double *const (&history)[batch_size]) const
     {
+      const bool rotate = has_tensorial_history();
       for (unsigned int l = 0; l < batch_size; ++l)
         {
+          if (rotate)
+            rotate_history(spin[0][l], spin[1][l], spin[2][l], dt, history[l]);
           double d[6], s[6];
           for (unsigned int k = 0; k < 6; ++k)
             {

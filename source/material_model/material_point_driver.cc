@@ -261,7 +261,7 @@ namespace anvil::MaterialModel
         }
       for (unsigned int k = 0; k < names.size(); ++k)
         if (!names[k].empty())
-          out << ',' << state.history[k];
+          out << ',' << material->history_value(state.history.data(), k);
       out << '\n';
     };
     write();

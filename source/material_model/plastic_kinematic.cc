@@ -256,6 +256,7 @@ namespace anvil::MaterialModel
 
 
   void PlasticKinematic::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                                    const double (&spin)[3][batch_size],
                                                     const double dt,
                                                     double (&s)[6][batch_size],
                                                     double *const (&h)[batch_size]) const
@@ -272,6 +273,10 @@ namespace anvil::MaterialModel
         work[l]  = h[l][7];
         rate[l]  = h[l][8];
       }
+    // The back stress rotates with the material, like the stress.
+    for (unsigned int l = 0; l < W; ++l)
+      Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, alpha[0][l], alpha[1][l],
+                                alpha[2][l], alpha[3][l], alpha[4][l], alpha[5][l]);
     for (unsigned int l = 0; l < W; ++l)
       {
         const double tr = D[0][l] + D[1][l] + D[2][l];

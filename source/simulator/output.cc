@@ -254,7 +254,8 @@ namespace anvil
               {
                 double mean = 0;
                 for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                  mean += group.history_variables(e, q)[k] / group.n_quadrature_points();
+                  mean += group.get_material().history_value(group.history_variables(e, q), k) /
+                          group.n_quadrature_points();
                 history_fields[names[k]][group.element_cell_index(e)] = mean;
               }
           eroded[group.element_cell_index(e)] = group.element_is_eroded(e);

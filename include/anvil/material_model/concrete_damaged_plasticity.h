@@ -10,6 +10,7 @@
 
 #include <anvil/material_model/rate_form_elastic.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -181,30 +182,40 @@ namespace anvil::MaterialModel
       return par;
     }
 
-    // History layout of one point.
-    static constexpr unsigned int i_tensile_damage     = 0;
-    static constexpr unsigned int i_compressive_damage = 1;
-    static constexpr unsigned int i_damage             = 2;
-    static constexpr unsigned int i_kappa_t            = 3;
-    static constexpr unsigned int i_kappa_c            = 4;
-    static constexpr unsigned int i_dissipation        = 5;
-    static constexpr unsigned int i_rate               = 6;
-    static constexpr unsigned int i_cdif               = 7;
-    static constexpr unsigned int i_tdif               = 8;
-    static constexpr unsigned int i_max_strain         = 9;
-    static constexpr unsigned int i_effective_stress   = 10;
-    static constexpr unsigned int i_strain             = 16;
-    static constexpr unsigned int i_length             = 22;
-    static constexpr unsigned int i_strength_factor    = 23;
+    // History layout of one point: what every step reads first (the
+    // elastic test of the batched update touches the first 16 values), then
+    // what only inelastic steps and output read.
+    static constexpr unsigned int i_effective_stress   = 0;
+    static constexpr unsigned int i_kappa_t            = 6;
+    static constexpr unsigned int i_kappa_c            = 7;
+    /** The effective cohesions c_t(kappa_t), c_c(kappa_c) with the
+        strength factor, before rate effects (kept so that the elastic test
+        needs no curve lookup). */
+    static constexpr unsigned int i_tensile_cohesion     = 8;
+    static constexpr unsigned int i_compressive_cohesion = 9;
+    static constexpr unsigned int i_tensile_damage     = 10;
+    static constexpr unsigned int i_compressive_damage = 11;
+    static constexpr unsigned int i_damage             = 12;
+    static constexpr unsigned int i_dissipation        = 13;
+    /** Filtered strain rate; negative until the first step sets it. */
+    static constexpr unsigned int i_rate               = 14;
+    static constexpr unsigned int i_strength_factor    = 15;
+    static constexpr unsigned int i_length             = 16;
+    static constexpr unsigned int i_max_strain         = 17;
+    static constexpr unsigned int i_strain             = 18;
     static constexpr unsigned int i_viscous_stress     = 24;
-    static constexpr unsigned int i_rate_started       = 30;
-    static constexpr unsigned int n_ul_history         = 31;
+    static constexpr unsigned int n_ul_history         = 30;
+    /** Derived values (history_value(), not stored): the dynamic increase
+        factors of the filtered rate. */
+    static constexpr unsigned int i_cdif               = n_ul_history;
+    static constexpr unsigned int i_tdif               = n_ul_history + 1;
 
     unsigned int n_updated_lagrangian_history() const override
     {
       return n_ul_history;
     }
     std::vector<std::string> history_names() const override;
+    double history_value(const double *history, unsigned int k) const override;
     int dissipation_index() const override
     {
       return i_dissipation;
@@ -252,13 +263,17 @@ namespace anvil::MaterialModel
                               double       *stress,
                               double       *history) const override;
 
+    /** The batched update: the elastic trial, the rate filter and the test
+        for an intact point inside its surfaces across the batch; the
+        others through the one-point inelastic update (see the .cc). */
+    /** The batched update: the elastic trial, the rate filter and the test
+        for a point inside its current surfaces across the batch; the
+        others through the one-point inelastic update (see the .cc). */
     void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                    const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
-                                    double *const (&history)[batch_size]) const override
-    {
-      Interface::update_cauchy_stress_batch(D, dt, stress, history);
-    }
+                                    double *const (&history)[batch_size]) const override;
 
     /** Static tensile damage and effective cohesion at hardening variable
         @p kappa_t, characteristic length @p h and strength factor @p f. */
@@ -296,9 +311,57 @@ namespace anvil::MaterialModel
     static double tension_weight(const double (&s)[3]);
 
     /** sigma : C_0^-1 : sigma_bar / 2, the energy stored in the point. */
-    double stored_energy(const double *sigma, const double *sbar) const;
+    double stored_energy(const double *sigma, const double *sbar) const
+    {
+      return stored_energy(sigma[0], sigma[1], sigma[2], sigma[3], sigma[4], sigma[5],
+                           sbar[0], sbar[1], sbar[2], sbar[3], sbar[4], sbar[5]);
+    }
+
+    /** The same from the components (inline, so that a loop over a batch
+        vectorises). */
+    double stored_energy(const double s0, const double s1, const double s2,
+                         const double s3, const double s4, const double s5,
+                         const double b0, const double b1, const double b2,
+                         const double b3, const double b4, const double b5) const
+    {
+      const double nu  = par.poissons_ratio;
+      const double tr  = b0 + b1 + b2;
+      const double sum = s0 * ((1. + nu) * b0 - nu * tr) + s1 * ((1. + nu) * b1 - nu * tr) +
+                         s2 * ((1. + nu) * b2 - nu * tr) +
+                         2. * (1. + nu) * (s3 * b3 + s4 * b4 + s5 * b5);
+      return 0.5 * sum / par.curves.youngs_modulus;
+    }
+
+    /** Whether a trial stress (von Mises stress @p q, mean stress @p mean,
+        tension positive, largest principal value @p s1) lies inside
+        Lubliner's surface and the tension cut-off at the cohesions @p c_t,
+        @p c_c by at least @p margin. Units: Pa. */
+    bool inside_surfaces(const double q, const double mean, const double s1, const double c_t,
+                         const double c_c, const double margin) const
+    {
+      const double beta = c_c / c_t * (1. - alpha) - (1. + alpha);
+      const double F =
+        (q + 3. * alpha * mean + beta * std::max(s1, 0.) + gamma * std::min(s1, 0.)) / (1. - alpha) -
+        c_c;
+      return (s1 <= c_t - margin) & (F <= -margin);
+    }
+
+    /** The total strain and its largest principal value (erosion by
+        principal strain only). */
+    void track_strain(const double *D, double dt, double *h) const;
+
+    /** Filter the largest principal strain rate @p now into the history. */
+    void filter_rate(double now, double dt, double *h) const;
+
+    /** Everything after the elastic trial (already in the history's
+        effective stress): return mapping, damage, nominal stress
+        @p stress and dissipation. */
+    void inelastic_update(const double *D, double dt, const double *dsig,
+                          const double *old_stress, double stored_old,
+                          double *stress, double *h) const;
 
     Parameters par;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
+
   };
 } // namespace anvil::MaterialModel

@@ -63,6 +63,7 @@ namespace anvil::MaterialModel
                               double       *history) const override;
 
     void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                    const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
                                     double *const (&history)[batch_size]) const override;

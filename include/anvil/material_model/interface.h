@@ -108,6 +108,14 @@ namespace anvil
         return {};
       }
 
+      /** Value of the variable named history_names()[k] at a point with
+          history @p history. The default reads the stored value; names
+          past n_history() are derived from the stored ones here. */
+      virtual double history_value(const double *history, const unsigned int k) const
+      {
+        return history[k];
+      }
+
       /** Index of the history variable holding the energy dissipated per
           unit volume (plastic work, damage), or -1. Units: J/m^3. */
       virtual int dissipation_index() const
@@ -197,6 +205,9 @@ namespace anvil
         return false;
       }
 
+      /** Number of material points the batched updates handle at once. */
+      static constexpr unsigned int batch_size = 8;
+
       /** Rotate the tensorial history by the spin W (components W_01,
           W_12, W_02) over @p dt, as the kernel rotates the stress. */
       virtual void rotate_history(const double w01,
@@ -208,16 +219,17 @@ namespace anvil
         (void)w01, (void)w12, (void)w02, (void)dt, (void)history;
       }
 
-      /** Number of material points the batched update handles at once. */
-      static constexpr unsigned int batch_size = 8;
-
       /**
        * The updated Lagrangian update for a batch of points, laid out so
        * that the compiler can vectorise across them: component k of point
-       * l is D[k][l], stress[k][l]. The default calls the one-point
-       * version for each point; models override it for speed.
+       * l is D[k][l], stress[k][l] (already rotated by the kernel), and
+       * spin[0][l] = W_01, spin[1][l] = W_12, spin[2][l] = W_02. The
+       * model rotates its own tensorial history with the spin (one pass
+       * over the history for both). The default calls rotate_history() and
+       * the one-point update for each point; models override it for speed.
        */
       virtual void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                              const double (&spin)[3][batch_size],
                                               const double dt,
                                               double (&stress)[6][batch_size],
                                               double *const (&history)[batch_size]) const;

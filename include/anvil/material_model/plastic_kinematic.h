@@ -155,6 +155,7 @@ namespace anvil::MaterialModel
     /** The radial return for a batch of points, written across lanes
         (branch-free: an elastic lane gets dep = 0) so that it vectorises. */
     void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                    const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
                                     double *const (&history)[batch_size]) const override;
