@@ -77,6 +77,47 @@ namespace anvil::MaterialModel
       return dealii::eigenvectors(t, dealii::SymmetricTensorEigenvectorMethod::hybrid);
     }
 
+    // Principal values of a symmetric tensor (Voigt), descending, without
+    // trigonometry (Kinematics::extreme_principal_values).
+    void principal_values(const double *v, double (&p)[3])
+    {
+      Kinematics::extreme_principal_values(v[0], v[1], v[2], v[3], v[4], v[5], p[0], p[2]);
+      p[1] = (v[0] + v[1] + v[2]) - p[0] - p[2];
+    }
+
+    // The damage combination per principal direction of a tensor x (Voigt)
+    // with principal values s1 >= s2 >= s3, s1 > 0 > s3: out = f_- x +
+    // (f_+ - f_-) sum_{s_i > 0} s_i P_i. The positive part comes from the
+    // one principal value whose sign differs from s2's, through its
+    // eigenprojection P = (x - a)(x - b) / ((s - a)(s - b)) (a, b the other
+    // two values), well conditioned since |s - a|, |s - b| >= |s| there. No
+    // eigenvectors; inline, so that a loop over a batch vectorises.
+    inline void combine_per_direction(const double x0, const double x1, const double x2,
+                                      const double x3, const double x4, const double x5,
+                                      const double s1, const double s2, const double s3,
+                                      const double f_plus, const double f_minus,
+                                      double (&out)[6])
+    {
+      const bool   two_positive = s2 > 0;
+      const double s = two_positive ? s3 : s1, a = two_positive ? s1 : s2,
+                   b = two_positive ? s2 : s3;
+      const double g = s / ((s - a) * (s - b));
+      // x^2 - (a + b) x + a b I
+      const double sum = a + b, prod = a * b;
+      const double P[6] = {x0 * x0 + x3 * x3 + x5 * x5 - sum * x0 + prod,
+                           x3 * x3 + x1 * x1 + x4 * x4 - sum * x1 + prod,
+                           x5 * x5 + x4 * x4 + x2 * x2 - sum * x2 + prod,
+                           x0 * x3 + x3 * x1 + x5 * x4 - sum * x3,
+                           x3 * x5 + x1 * x4 + x4 * x2 - sum * x4,
+                           x0 * x5 + x3 * x4 + x5 * x2 - sum * x5};
+      const double x[6] = {x0, x1, x2, x3, x4, x5};
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          const double positive = two_positive ? x[k] - g * P[k] : g * P[k];
+          out[k] = f_minus * x[k] + (f_plus - f_minus) * positive;
+        }
+    }
+
     // out += value n (x) n, Voigt.
     void add_projection(const double value, const dealii::Tensor<1, 3> &n, double *out)
     {
@@ -463,7 +504,7 @@ namespace anvil::MaterialModel
                                              const double  tdif,
                                              double (&principal)[3]) const
   {
-    Kinematics::principal_values(sbar, principal);
+    principal_values(sbar, principal);
     for (unsigned int it = 0; it < 8; ++it)
       {
         const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
@@ -788,7 +829,7 @@ namespace anvil::MaterialModel
           sref[k] = (sref[k] + dsig[k] + eta * sbar[k]) / (1. + eta);
         d_t = (h[i_tensile_damage] + eta * d_t) / (1. + eta);
         d_c = (h[i_compressive_damage] + eta * d_c) / (1. + eta);
-        Kinematics::principal_values(sref, principal);
+        principal_values(sref, principal);
       }
     // 1 - d(r) = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
     // s_c = 1 - w_c (1 - r).
@@ -803,10 +844,10 @@ namespace anvil::MaterialModel
       {
         // Principal stresses of both signs: the combination per principal
         // direction, r_i = 1 where sigma_bar_i > 0, else 0 (see the header).
-        const auto eig = principal_frame(sref);
-        std::fill(stress, stress + 6, 0.);
-        for (const auto &[value, n] : eig)
-          add_projection(intact(value > 0 ? 1. : 0.) * value, n, stress);
+        double out[6];
+        combine_per_direction(sref[0], sref[1], sref[2], sref[3], sref[4], sref[5], principal[0],
+                              principal[1], principal[2], intact(1.), intact(0.), out);
+        std::copy(out, out + 6, stress);
       }
     else
       for (unsigned int k = 0; k < 6; ++k)
@@ -921,29 +962,13 @@ namespace anvil::MaterialModel
         };
         damage[l]           = 1. - intact(r);
         const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
-        const double f_plus = intact(1.), f_minus = intact(0.);
-        // sum_{s_i > 0} s_i P_i from the lonely principal value.
-        const bool   two_positive = s2 > 0;
-        const double sl = two_positive ? s3 : s1, so1 = two_positive ? s1 : s2,
-                     so2 = two_positive ? s2 : s3;
-        const double denom = (sl - so1) * (sl - so2);
-        const double g     = mixed ? sl / denom : 0.;
-        // A^2 - (so1 + so2) A + so1 so2 I, A = sbar.
         const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
                      x4 = sbar[4][l], x5 = sbar[5][l];
-        const double sum = so1 + so2, prod = so1 * so2;
-        const double P[6] = {x0 * x0 + x3 * x3 + x5 * x5 - sum * x0 + prod,
-                             x3 * x3 + x1 * x1 + x4 * x4 - sum * x1 + prod,
-                             x5 * x5 + x4 * x4 + x2 * x2 - sum * x2 + prod,
-                             x0 * x3 + x3 * x1 + x5 * x4 - sum * x3,
-                             x3 * x5 + x1 * x4 + x4 * x2 - sum * x4,
-                             x0 * x5 + x3 * x4 + x5 * x2 - sum * x5};
+        double per_direction[6];
+        combine_per_direction(x0, x1, x2, x3, x4, x5, s1, s2, s3, intact(1.), intact(0.),
+                              per_direction);
         for (unsigned int k = 0; k < 6; ++k)
-          {
-            const double positive = two_positive ? sbar[k][l] - g * P[k] : g * P[k];
-            nominal[k][l] = mixed ? f_minus * sbar[k][l] + (f_plus - f_minus) * positive :
-                                    (1. - damage[l]) * sbar[k][l];
-          }
+          nominal[k][l] = mixed ? per_direction[k] : (1. - damage[l]) * sbar[k][l];
         double work = 0;
         for (unsigned int k = 0; k < 6; ++k)
           work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
