@@ -794,6 +794,8 @@ namespace anvil::Element
     double                 min_dt2 = 1e300;
     const unsigned int     n_el    = n_elements();
     const bool             degrading = material.degrades() && n_hist > 0;
+    const double           b1 = bulk_linear, b2 = bulk_quadratic,
+                           expansion_factor2 = bulk_dt_factor2_expansion;
 
     for (unsigned int e0 = 0; e0 < n_el; e0 += W)
       {
@@ -946,6 +948,30 @@ namespace anvil::Element
               }
           }
 
+        // Per-element data of the lanes, gathered once so that the loops
+        // below vectorise across them.
+        alignas(64) double V0[W], shape[W], q_old[W], r_old[3][4][W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            V0[l]    = reference_volume[el[l]];
+            shape[l] = shape_factor[el[l]];
+            q_old[l] = bulk_viscosity() ? bulk_pressure[el[l]] : 0.;
+          }
+        alignas(64) double q_modes[3][4][W], stiffness[W];
+        if constexpr (H != HourglassType::none)
+          for (unsigned int l = 0; l < W; ++l)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int j = 0; j < 4; ++j)
+                r_old[a][j][l] = hourglass_resistance[12 * el[l] + 4 * a + j];
+        if constexpr (H == HourglassType::stiffness)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int j = 0; j < 4; ++j)
+                  q_modes[a][j][l] = hourglass_modes[12 * el[l] + 4 * a + j];
+              stiffness[l] = degrading ? material.stiffness_fraction(&history[n_hist * el[l]]) : 1.;
+            }
+
         // max_c |grad xi_c|^2 per lane: the characteristic length.
         alignas(64) double g2[W];
         for (unsigned int l = 0; l < W; ++l)
@@ -963,12 +989,12 @@ namespace anvil::Element
         if (bulk_viscosity())
           for (unsigned int l = 0; l < W; ++l)
             {
-              const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
-              qv[l]              = bulk_viscosity_pressure(
-                trD[l], 2. / std::sqrt(g2[l]), rho_c, std::sqrt(M / rho_c), dt_bulk2[l]);
-              e_visc[l] = 0.5 * (bulk_pressure[el[l]] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
+              const double rho_c = rho0 * V0[l] / (8. * detn[l]);
+              qv[l]              = bulk_viscosity_pressure(trD[l], 2. / std::sqrt(g2[l]), rho_c,
+                                                           std::sqrt(M / rho_c), b1, b2,
+                                                           expansion_factor2, dt_bulk2[l]);
+              e_visc[l] = 0.5 * (q_old[l] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
             }
-
         // Internal force f_Ia -= V sigma_ab dxi_c/dx_b dN_I/dxi_c, together
         // with the hourglass force below.
         alignas(64) double G[3][3][W];
@@ -1008,12 +1034,11 @@ namespace anvil::Element
             for (unsigned int l = 0; l < W; ++l)
               {
                 const double volume = 8. * detn[l];
-                const double rho    = rho0 * reference_volume[el[l]] / volume;
+                const double rho    = rho0 * V0[l] / volume;
                 if constexpr (H == HourglassType::viscous)
                   k[l] = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
                 else
-                  k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume) *
-                         (degrading ? material.stiffness_fraction(&history[n_hist * el[l]]) : 1.);
+                  k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume) * stiffness[l];
               }
             for (unsigned int a = 0; a < 3; ++a)
               for (unsigned int j = 0; j < 4; ++j)
@@ -1023,11 +1048,10 @@ namespace anvil::Element
                       r[a][j][l] = k[l] * h[a][j][l];
                     else
                       {
-                        const double q = hourglass_modes[12 * el[l] + 4 * a + j] + dt * h[a][j][l];
+                        const double q = q_modes[a][j][l] + dt * h[a][j][l];
                         r[a][j][l]     = k[l] * q;
                       }
-                    const double r_old = hourglass_resistance[12 * el[l] + 4 * a + j];
-                    e_hg[l] += 0.5 * (r_old + r[a][j][l]) * h[a][j][l] * dt;
+                    e_hg[l] += 0.5 * (r_old[a][j][l] + r[a][j][l]) * h[a][j][l] * dt;
                   }
             // The hourglass part of G: + r_aj t_jc.
             for (unsigned int a = 0; a < 3; ++a)
@@ -1059,18 +1083,22 @@ namespace anvil::Element
               }
 
         // Stable time step per lane: L_e = min(2 / max_c |grad xi_c|, V / A_max).
+        // Distortion factor, refreshed every few cycles (shape_factor).
+        if (refresh_shape)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double V = 8. * detn[l];
+              shape[l]       = std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
+                                          return xe[n][a][l];
+                                        }) * g2[l] / 4.);
+              if (l < n_valid)
+                shape_factor[el[l]] = shape[l];
+            }
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
-            const double rho_c = rho0 * reference_volume[el[l]] / (8. * detn[l]);
-            const double V     = 8. * detn[l];
-            // Distortion factor, refreshed every few cycles (shape_factor).
-            if (refresh_shape && l < n_valid)
-              shape_factor[el[l]] =
-                std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
-                               return xe[n][a][l];
-                             }) * g2[l] / 4.);
-            dt2[l] = 4. / g2[l] * shape_factor[el[l]] * rho_c / M * dt_bulk2[l];
+            const double rho_c = rho0 * V0[l] / (8. * detn[l]);
+            dt2[l]             = 4. / g2[l] * shape[l] * rho_c / M * dt_bulk2[l];
           }
 
         // Write back and scatter the valid lanes, in element order.

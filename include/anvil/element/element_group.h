@@ -265,15 +265,21 @@ namespace anvil::Element
         @p rho and wave speed @p c. */
     double bulk_viscosity_pressure(double trD, double L, double rho, double c, double &dt_factor2) const
     {
-      if (!(trD < 0))
-        {
-          dt_factor2 = bulk_dt_factor2_expansion;
-          return 0.;
-        }
-      const double xi = bulk_linear - bulk_quadratic * bulk_quadratic * L * trD / c;
-      const double s  = std::sqrt(1. + xi * xi) - xi;
-      dt_factor2      = s * s;
-      return rho * L * (bulk_quadratic * bulk_quadratic * L * trD * trD - bulk_linear * c * trD);
+      return bulk_viscosity_pressure(trD, L, rho, c, bulk_linear, bulk_quadratic,
+                                     bulk_dt_factor2_expansion, dt_factor2);
+    }
+    /** The same with the coefficients as arguments: branch-free (both
+        sides computed, one selected), so that a loop over a batch
+        vectorises. */
+    static double bulk_viscosity_pressure(const double trD, const double L, const double rho,
+                                          const double c, const double b1, const double b2,
+                                          const double expansion_factor2, double &dt_factor2)
+    {
+      const double compression = trD < 0 ? 1. : 0.;
+      const double xi          = b1 - b2 * b2 * L * trD / c;
+      const double s           = std::sqrt(1. + xi * xi) - xi;
+      dt_factor2 = compression * (s * s) + (1. - compression) * expansion_factor2;
+      return compression * (rho * L * (b2 * b2 * L * trD * trD - b1 * c * trD));
     }
     const unsigned int              n_qp;
     const unsigned int              n_hist;
