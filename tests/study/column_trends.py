@@ -12,6 +12,7 @@ differ: the arching of the fixed ends, prm/rc_column_impact/README.md).
 """
 import os
 import signal
+import shutil
 import subprocess
 import time
 from anvil_test import Checker, arguments, read_csv
@@ -23,9 +24,18 @@ studies = os.path.join(os.path.abspath(args.source_dir), "prm", "rc_column_impac
 # The mass study is stopped (SIGTERM) while its first runs are under way:
 # they write checkpoints, and the study started again resumes them (its
 # results then pass the same checks as an uninterrupted study's).
+# The signal goes 1 s after both first runs have started (not at a fixed
+# time: a run takes a few seconds, and faster code once let two of them
+# finish before a fixed 6 s).
+shutil.rmtree(os.path.join(args.work_dir, "output", "hammer_mass_coarse"), ignore_errors=True)
 p = subprocess.Popen([args.anvil, "--study", os.path.join(studies, "hammer_mass_coarse.prm"), "--jobs", "2"],
                      cwd=args.work_dir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-time.sleep(6)
+deadline = time.time() + 300
+while time.time() < deadline and p.poll() is None and not all(
+        os.path.exists(os.path.join(args.work_dir, "output", "hammer_mass_coarse", f"run_0{i}", "run.log"))
+        for i in (1, 2)):
+    time.sleep(0.05)
+time.sleep(1.0)
 p.send_signal(signal.SIGTERM)
 out, err = p.communicate()
 c.check_true("a study stopped by SIGTERM: exit 5, its runs checkpointed", p.returncode == 5 and

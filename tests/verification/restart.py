@@ -74,10 +74,14 @@ c.check_true("resumed run ends", r.returncode == 0 and "resumed from the checkpo
              r.stderr.strip())
 compare("full", "killed", "np = 1, killed and resumed")
 
-# np = 2: SIGTERM writes a checkpoint and stops; resume on 2.
-r = subprocess.run(command("full2", np=2), cwd=work, capture_output=True, text=True)
+# np = 2: SIGTERM writes a checkpoint and stops; resume on 2. These runs
+# go to 40 ms (the end criterion stops them near 35 ms), so that the signal,
+# 1 s after the run has started writing, lands well before the end.
+longer = ["--set", "Simulation/End time=0.04"]
+r = subprocess.run(command("full2", np=2, extra=longer), cwd=work, capture_output=True, text=True)
 c.check_true("uninterrupted run, np = 2", r.returncode == 0, r.stderr.strip()[-300:])
-p = subprocess.Popen(command("term", np=2), cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+p = subprocess.Popen(command("term", np=2, extra=longer), cwd=work, stdout=subprocess.PIPE,
+                     stderr=subprocess.PIPE, text=True)
 deadline = time.time() + 300
 while time.time() < deadline and not os.path.exists(os.path.join(work, "output", "term", "energy.csv")):
     time.sleep(0.1)
@@ -87,12 +91,13 @@ out, err = p.communicate()
 lines = [l for l in err.splitlines() if l.startswith("anvil:")]
 c.check_true("SIGTERM: one line saying how to resume",
              len(lines) == 1 and "interrupted at t =" in lines[0] and "anvil --resume" in lines[0], err.strip()[-300:])
-r = subprocess.run(command("term", np=2, resume=True), cwd=work, capture_output=True, text=True)
+r = subprocess.run(command("term", np=2, resume=True, extra=longer), cwd=work, capture_output=True, text=True)
 c.check_true("resumed on 2 processes", r.returncode == 0, r.stderr.strip()[-300:])
 compare("full2", "term", "np = 2, SIGTERM and resumed")
 
 # The same, one process, to see its exit status.
-p = subprocess.Popen(command("term1"), cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+p = subprocess.Popen(command("term1", extra=longer), cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                     text=True)
 while time.time() < deadline and not os.path.exists(os.path.join(work, "output", "term1", "energy.csv")):
     time.sleep(0.1)
 time.sleep(0.5)
