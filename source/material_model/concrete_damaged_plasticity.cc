@@ -636,12 +636,7 @@ namespace anvil::MaterialModel
       double dt_, ct, dc_, cc;
       tension(kt, len, f, dt_, ct);
       compression(kc, f, dc_, cc);
-      ct *= tdif;
-      cc *= cdif;
-      const double beta = cc / ct * (1. - alpha) - (1. + alpha);
-      return (q + 3. * alpha * mean + beta * std::max(s_max, 0.) + gamma * std::min(s_max, 0.)) /
-               (1. - alpha) -
-             cc;
+      return yield_function(q, mean, s_max, tdif * ct, cdif * cc);
     };
 
     const double F0  = yield(q_tr, mean_tr, sp[0], kt0, kc0);
@@ -767,7 +762,7 @@ namespace anvil::MaterialModel
       {
         double largest, smallest;
         Kinematics::extreme_principal_values(D[0], D[1], D[2], D[3], D[4], D[5], largest, smallest);
-        filter_rate(std::max(std::abs(largest), std::abs(smallest)), dt, h);
+        h[i_rate] = filtered_rate(h[i_rate], std::max(std::abs(largest), std::abs(smallest)), dt);
       }
     inelastic_update(D, dt, dsig, old_stress, stored_old, stress, h);
   }
@@ -783,17 +778,6 @@ namespace anvil::MaterialModel
     double e[3];
     Kinematics::principal_values(eps, e);
     h[i_max_strain] = e[0];
-  }
-
-
-  // The largest principal strain rate, low-pass filtered; the first step
-  // starts the filter at its own rate (no ramp from zero).
-  void ConcreteDamagedPlasticity::filter_rate(const double now, const double dt, double *h) const
-  {
-    if (h[i_rate] < 0)
-      h[i_rate] = now;
-    else
-      h[i_rate] += (now - h[i_rate]) * dt / (par.rate_filter_time + dt);
   }
 
 
@@ -833,10 +817,7 @@ namespace anvil::MaterialModel
       }
     // 1 - d(r) = (1 - s_t d_c)(1 - s_c d_t), s_t = 1 - w_t r,
     // s_c = 1 - w_c (1 - r).
-    auto intact = [&](const double r) {
-      return (1. - (1. - par.tensile_recovery * r) * d_c) *
-             (1. - (1. - par.compressive_recovery * (1. - r)) * d_t);
-    };
+    auto intact = [&](const double r) { return intact_fraction(r, d_t, d_c); };
     h[i_tensile_damage]     = d_t;
     h[i_compressive_damage] = d_c;
     h[i_damage]             = 1. - intact(tension_weight(principal));
@@ -956,10 +937,7 @@ namespace anvil::MaterialModel
         const double num = std::max(s1, 0.) + std::max(s2, 0.) + std::max(s3, 0.);
         const double den = std::abs(s1) + std::abs(s2) + std::abs(s3);
         const double r   = den > 0 ? num / den : 0.;
-        auto intact = [&](const double w) {
-          return (1. - (1. - par.tensile_recovery * w) * d_c) *
-                 (1. - (1. - par.compressive_recovery * (1. - w)) * d_t);
-        };
+        auto intact = [&](const double w) { return intact_fraction(w, d_t, d_c); };
         damage[l]           = 1. - intact(r);
         const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
         const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
@@ -979,26 +957,23 @@ namespace anvil::MaterialModel
         elastic[l] = inside ? 1. : 0.;
       }
     if (par.rate_effects)
-      for (unsigned int l = 0; l < W; ++l)
-        {
-          double largest, smallest;
-          Kinematics::extreme_principal_values(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l],
-                                               largest, smallest);
-          now[l] = std::max(std::abs(largest), std::abs(smallest));
-        }
-    // filter_rate() across lanes.
-    const double weight = dt / (par.rate_filter_time + dt);
-    for (unsigned int l = 0; l < W; ++l)
-      rate[l] = rate[l] < 0 ? now[l] : rate[l] + (now[l] - rate[l]) * weight;
+      {
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            double largest, smallest;
+            Kinematics::extreme_principal_values(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l],
+                                                 D[5][l], largest, smallest);
+            now[l] = std::max(std::abs(largest), std::abs(smallest));
+          }
+        for (unsigned int l = 0; l < W; ++l)
+          rate[l] = filtered_rate(rate[l], now[l], dt);
+      }
 
     for (unsigned int l = 0; l < W; ++l)
       {
         double *hl = h[l];
         for (unsigned int k = 0; k < 6; ++k)
           hl[i_effective_stress + k] = sbar[k][l];
-        double d[6];
-        for (unsigned int k = 0; k < 6; ++k)
-          d[k] = D[k][l];
         if (par.rate_effects)
           {
             hl[i_rate] = rate[l];
@@ -1021,9 +996,10 @@ namespace anvil::MaterialModel
           }
         else
           {
-            double ds[6], old[6], st[6];
+            double d[6], ds[6], old[6], st[6];
             for (unsigned int k = 0; k < 6; ++k)
               {
+                d[k]   = D[k][l];
                 ds[k]  = dsig[k][l];
                 old[k] = s[k][l];
               }

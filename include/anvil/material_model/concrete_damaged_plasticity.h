@@ -339,19 +339,39 @@ namespace anvil::MaterialModel
     bool inside_surfaces(const double q, const double mean, const double s1, const double c_t,
                          const double c_c, const double margin) const
     {
+      return (s1 <= c_t - margin) & (yield_function(q, mean, s1, c_t, c_c) <= -margin);
+    }
+
+    /** Lubliner's F at von Mises stress @p q, mean stress @p mean (tension
+        positive), largest principal value @p s_max and cohesions @p c_t,
+        @p c_c. Units: Pa. */
+    double yield_function(const double q, const double mean, const double s_max, const double c_t,
+                          const double c_c) const
+    {
       const double beta = c_c / c_t * (1. - alpha) - (1. + alpha);
-      const double F =
-        (q + 3. * alpha * mean + beta * std::max(s1, 0.) + gamma * std::min(s1, 0.)) / (1. - alpha) -
-        c_c;
-      return (s1 <= c_t - margin) & (F <= -margin);
+      return (q + 3. * alpha * mean + beta * std::max(s_max, 0.) + gamma * std::min(s_max, 0.)) /
+               (1. - alpha) -
+             c_c;
+    }
+
+    /** 1 - d of ABAQUS's combination, (1 - s_t d_c)(1 - s_c d_t) with
+        s_t = 1 - w_t r, s_c = 1 - w_c (1 - r), at tension weight @p r. */
+    double intact_fraction(const double r, const double d_t, const double d_c) const
+    {
+      return (1. - (1. - par.tensile_recovery * r) * d_c) *
+             (1. - (1. - par.compressive_recovery * (1. - r)) * d_t);
+    }
+
+    /** The low-pass filter of the strain rate: @p now at the first step
+        (@p rate < 0), else rate + (now - rate) dt / (tau + dt). */
+    double filtered_rate(const double rate, const double now, const double dt) const
+    {
+      return rate < 0 ? now : rate + (now - rate) * (dt / (par.rate_filter_time + dt));
     }
 
     /** The total strain and its largest principal value (erosion by
         principal strain only). */
     void track_strain(const double *D, double dt, double *h) const;
-
-    /** Filter the largest principal strain rate @p now into the history. */
-    void filter_rate(double now, double dt, double *h) const;
 
     /** Everything after the elastic trial (already in the history's
         effective stress): return mapping, damage, nominal stress
