@@ -171,18 +171,80 @@ namespace anvil
                       "Factor on the tensile and compressive strength curves "
                       "inside the box, 0 < factor <= 1. Units: none.");
     prm.leave_subsection();
+    prm.enter_subsection("Full integration region");
+    prm.declare_entry("Lower corner",
+                      "",
+                      Patterns::Anything(),
+                      "Lower corner of a box (reference coordinates) whose "
+                      "elements (by their centroid) use full 2x2x2 integration "
+                      "in a body of one-point elements: where a concentrated "
+                      "load (a contact under a small nose, a support) would "
+                      "excite hourglass modes of one-point elements. Empty: "
+                      "none. Units: m.");
+    prm.declare_entry("Upper corner",
+                      "",
+                      Patterns::Anything(),
+                      "Upper corner of the full integration box. Units: m.");
+    prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
+  }
+
+
+  namespace
+  {
+    // A box of the current subsection ('Lower corner', 'Upper corner'):
+    // false when both are empty.
+    bool parse_box(dealii::ParameterHandler &prm,
+                   const std::string        &where,
+                   dealii::Point<3>         &lower,
+                   dealii::Point<3>         &upper)
+    {
+      const std::string lo = dealii::Utilities::trim(prm.get("Lower corner"));
+      const std::string hi = dealii::Utilities::trim(prm.get("Upper corner"));
+      if (lo.empty() && hi.empty())
+        return false;
+      if (lo.empty() || hi.empty())
+        throw InputError(where + "give both 'Lower corner' and 'Upper corner', or neither");
+      try
+        {
+          lower = dealii::Point<3>(parse_vector(lo, "Lower corner"));
+          upper = dealii::Point<3>(parse_vector(hi, "Upper corner"));
+        }
+      catch (const InputError &e)
+        {
+          throw InputError(where + e.what());
+        }
+      for (unsigned int d = 0; d < 3; ++d)
+        if (!(lower[d] < upper[d]))
+          throw InputError(where + "'Lower corner' must lie below 'Upper corner' in every "
+                                   "coordinate");
+      return true;
+    }
+
+
+    bool inside(const dealii::Point<3> &p, const dealii::Point<3> &lo, const dealii::Point<3> &hi)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (p[d] < lo[d] || p[d] > hi[d])
+          return false;
+      return true;
+    }
+  } // namespace
+
+
+  Element::Integration Body::integration_at(const dealii::Point<3> &centroid) const
+  {
+    return has_full_region && inside(centroid, full_region_lower, full_region_upper) ?
+             Element::Integration::full :
+             integration;
   }
 
 
   double Body::strength_factor(const dealii::Point<3> &centroid) const
   {
-    if (!has_imperfection)
-      return 1.;
-    for (unsigned int d = 0; d < 3; ++d)
-      if (centroid[d] < imperfection_lower[d] || centroid[d] > imperfection_upper[d])
-        return 1.;
-    return imperfection_factor;
+    return has_imperfection && inside(centroid, imperfection_lower, imperfection_upper) ?
+             imperfection_factor :
+             1.;
   }
 
 
@@ -268,23 +330,13 @@ namespace anvil
       parse_vector(prm.get("Initial velocity"), "Initial velocity");
     prm.enter_subsection("Imperfection");
     {
-      const std::string lo = dealii::Utilities::trim(prm.get("Lower corner"));
-      const std::string hi = dealii::Utilities::trim(prm.get("Upper corner"));
-      has_imperfection     = !lo.empty() || !hi.empty();
+      has_imperfection = parse_box(prm,
+                                   "subsection 'Body " + name + "/Imperfection': ",
+                                   imperfection_lower,
+                                   imperfection_upper);
       if (has_imperfection)
         {
           const std::string where = "subsection 'Body " + name + "/Imperfection': ";
-          if (lo.empty() || hi.empty())
-            throw InputError(where + "give both 'Lower corner' and 'Upper corner', or neither");
-          try
-            {
-              imperfection_lower = dealii::Point<3>(parse_vector(lo, "Lower corner"));
-              imperfection_upper = dealii::Point<3>(parse_vector(hi, "Upper corner"));
-            }
-          catch (const InputError &e)
-            {
-              throw InputError(where + e.what());
-            }
           imperfection_factor = prm.get_double("Strength factor");
           if (!(imperfection_factor > 0) || imperfection_factor > 1)
             throw InputError(where + "'Strength factor' must satisfy 0 < factor <= 1");
@@ -294,6 +346,12 @@ namespace anvil
                              "concrete damaged plasticity)");
         }
     }
+    prm.leave_subsection();
+    prm.enter_subsection("Full integration region");
+    has_full_region = parse_box(prm,
+                                "subsection 'Body " + name + "/Full integration region': ",
+                                full_region_lower,
+                                full_region_upper);
     prm.leave_subsection();
     rigid.parse_parameters(prm, name);
     if (!material->is_rigid() && rigid.shape.type != RigidBody::Shape::Type::mesh)

@@ -365,7 +365,8 @@ namespace anvil
     std::vector<double> dissipated(nb, 0.);
     for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
-        const auto &group = element_groups[g];
+        const auto        &group = element_groups[g];
+        const unsigned int b     = group_body[g];
         const auto  names = group.get_material().history_names();
         const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
         const int   id    = group.get_material().dissipation_index();
@@ -375,11 +376,11 @@ namespace anvil
               const bool eroded = group.element_is_eroded(e);
               if (id >= 0)
                 for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                  dissipated[g] += group.history_variables(e, q)[id] *
+                  dissipated[b] += group.history_variables(e, q)[id] *
                                    group.element_reference_volume(e) /
                                    group.n_quadrature_points();
-              count[3 * g] += 1;
-              count[3 * g + 1] += eroded;
+              count[3 * b] += 1;
+              count[3 * b + 1] += eroded;
               if (it == names.end())
                 continue;
               double eps_p = 0;
@@ -387,8 +388,8 @@ namespace anvil
                 eps_p += group.history_variables(e, q)[it - names.begin()] /
                          group.n_quadrature_points();
               if (!eroded)
-                peak[2 * g] = std::max(peak[2 * g], eps_p);
-              peak[2 * g + 1] = std::max(peak[2 * g + 1], eps_p);
+                peak[2 * b] = std::max(peak[2 * b], eps_p);
+              peak[2 * b + 1] = std::max(peak[2 * b + 1], eps_p);
             }
       }
     for (unsigned int i = 0; i < position.locally_owned_size(); ++i)

@@ -167,17 +167,29 @@ namespace anvil
   // the price is the duplicated work on one layer of ghost cells.
   void Simulator::setup_element_groups()
   {
+    // A body's elements in its 'Full integration region' form a second
+    // group of fully integrated elements: group_body maps a group to its
+    // body, body_group a body to its groups (one point, full).
     element_groups.clear();
-    element_groups.reserve(bodies.size());
-    for (const auto &body : bodies)
-      element_groups.emplace_back(*body.material,
-                                  body.formulation,
-                                  body.integration,
-                                  body.hourglass,
-                                  body.hourglass_coefficient);
+    group_body.clear();
+    body_group.assign(bodies.size(), {{-1, -1}});
     for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (!bodies[b].is_rigid())
-        element_groups[b].set_bulk_viscosity(bodies[b].bulk_linear, bodies[b].bulk_quadratic);
+      {
+        const auto &body = bodies[b];
+        for (unsigned int slot = 0; slot < (body.has_full_integration_region() ? 2 : 1); ++slot)
+          {
+            const auto integration = (slot == 0 ? body.integration : Element::Integration::full);
+            body_group[b][slot] = element_groups.size();
+            group_body.push_back(b);
+            element_groups.emplace_back(*body.material,
+                                        body.formulation,
+                                        integration,
+                                        body.hourglass,
+                                        body.hourglass_coefficient);
+            if (!body.is_rigid())
+              element_groups.back().set_bulk_viscosity(body.bulk_linear, body.bulk_quadratic);
+          }
+      }
     const auto &partitioner = position.get_partitioner();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
@@ -194,13 +206,16 @@ namespace anvil
               for (unsigned int c = 0; c < 3; ++c)
                 X[v][c] = cell->vertex(v)[c];
             }
-          element_groups[cell->material_id()].add_element(
+          const Body        &body = bodies[cell->material_id()];
+          const unsigned int slot =
+            (body.integration_at(cell->center()) == body.integration ? 0 : 1);
+          element_groups[body_group[cell->material_id()][slot]].add_element(
             node,
             X,
             cell->active_cell_index(),
             cell->is_locally_owned(),
             cell->id().get_coarse_cell_id(),
-            bodies[cell->material_id()].strength_factor(cell->center()));
+            body.strength_factor(cell->center()));
         }
     for (auto &g : element_groups)
       g.finalize();

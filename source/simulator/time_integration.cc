@@ -137,7 +137,7 @@ namespace anvil
                        group.n_quadrature_points();
           info.insert(info.end(),
                       {double(group.element_global_id(e)),
-                       double(group_index),
+                       double(group_body[group_index]),
                        c[0],
                        c[1],
                        c[2],

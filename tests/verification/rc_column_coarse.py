@@ -2,8 +2,9 @@
 
 Impact (270 kg at 2 m/s, the end criterion ends the runs):
 - bond-slip and common-node columns run to their end with an energy balance
-  error below 2 %; their peak impact-point displacements agree within 10 %
-  (the paper: 5 %);
+  error below 2 % and hourglass energy below 10 % of internal energy (the
+  paper's criterion); their peak impact-point displacements agree within
+  10 % (the paper: 5 %);
 - conservation of momentum across the contact: the impulse of the contact
   force on the hammer equals the change of the hammer's momentum, and the
   support reactions' impulse less the contact impulse equals the column's
@@ -11,7 +12,10 @@ Impact (270 kg at 2 m/s, the end criterion ends the runs):
 - summary.csv agrees with the histories it summarises;
 - np = 2 gives the same histories as np = 1 (bitwise).
 
-Elastic stiffness of the column model: the hammer, given a prescribed slow
+Elastic stiffness of the column model (one-point elements with stiffness
+hourglass control, as the viscous form has no static resistance to the
+hourglass modes, and full integration under the nose): the hammer, given a
+prescribed slow
 motion (2 mm/s, 25 ms: 0.05 mm, below cracking), pushes the common-node
 column at the impact point; the force per deflection of the back face must
 be that of a fixed-fixed Timoshenko beam with the uncracked transformed
@@ -51,6 +55,8 @@ for name, out in (("bond-slip", bond), ("common node", common)):
           f"contact {1e3 * s['contact_duration_s']:.1f} ms, converted {100 * s['kinetic_energy_converted']:.1f} %, "
           f"hourglass/internal up to {s['max_hourglass_to_internal']:.2f}, end {1e3 * s['end_time_s']:.1f} ms")
     c.check_below(f"{name}: largest energy balance error", s["max_balance_error"], 0.02)
+    c.check_below(f"{name}: largest hourglass / internal energy (once internal > 1 % of E_0)",
+                  s["max_hourglass_to_internal"], 0.10)
 
     # Momentum across the contact: the impulse on the hammer (trapezoidal
     # over the history rows) against M (v_end - v_0).

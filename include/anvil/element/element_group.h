@@ -322,6 +322,9 @@ namespace anvil::Element
     std::vector<double> strength_factors;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
+    /** Full integration: update an element's eight points as one batch
+        (false only in the reference loop). */
+    bool batch_points = true;
 
   public:
     /** Everything a step changes (checkpoints). */

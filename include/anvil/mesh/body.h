@@ -60,6 +60,17 @@ namespace anvil
         the imperfection's inside its box, 1 elsewhere. */
     double strength_factor(const dealii::Point<3> &centroid) const;
 
+    /** Integration of an element with reference centroid @p centroid:
+        full inside the 'Full integration region', the body's elsewhere. */
+    Element::Integration integration_at(const dealii::Point<3> &centroid) const;
+
+    /** Whether some elements of this body may be fully integrated while
+        the body's integration is one point. */
+    bool has_full_integration_region() const
+    {
+      return has_full_region && integration == Element::Integration::one_point;
+    }
+
   private:
     std::string          mesh_source;
     dealii::Point<3>     lower, upper;
@@ -74,5 +85,7 @@ namespace anvil
     bool                 has_imperfection    = false;
     dealii::Point<3>     imperfection_lower, imperfection_upper;
     double               imperfection_factor = 1.;
+    bool                 has_full_region     = false;
+    dealii::Point<3>     full_region_lower, full_region_upper;
   };
 } // namespace anvil

@@ -317,6 +317,11 @@ namespace anvil
     dealii::FESystem<3>                             fe;
     dealii::DoFHandler<3>                           dof_handler;
     std::vector<Element::ElementGroup>              element_groups;
+    /** Body of each element group, and the groups of each body (one
+        point or the body's own integration; full integration region; -1:
+        none). */
+    std::vector<unsigned int>                       group_body;
+    std::vector<std::array<int, 2>>                 body_group;
 
     // Nodal state: reference and current positions, half-step velocity,
     // force and lumped mass, all with ghost entries.
