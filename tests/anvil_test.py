@@ -157,3 +157,80 @@ def uniaxial_boundary_conditions(body, velocity):
                  f"  set Boundary ids = {bid}\n  set Components = {comp}\nend\n")
     return text + (f"subsection Boundary condition pull\n  set Body = {body}\n  set Boundary ids = 1\n"
                    f"  set Type = velocity\n  set Velocity = {velocity}, 0, 0\n  set Components = x\nend\n")
+
+
+# Meshes for contact tests, written as ABAQUS .inp files (C3D8).
+
+def graded(n, r):
+    """n + 1 coordinates in [0, 1], each interval r times the one before."""
+    sizes = [r ** i for i in range(n)]
+    x = [0.0]
+    for h in sizes:
+        x.append(x[-1] + h / sum(sizes))
+    return x
+
+
+def write_hexahedra(path, nodes, n, elset):
+    """Structured n[0] x n[1] x n[2] hexahedra over the node list 'nodes'
+    (x fastest, then y, then z) as an ABAQUS .inp file."""
+    node = lambda i, j, k: 1 + i + (n[0] + 1) * (j + (n[1] + 1) * k)
+    lines = ["*NODE"] + [f"{i + 1}, {p[0]:.14g}, {p[1]:.14g}, {p[2]:.14g}" for i, p in enumerate(nodes)]
+    lines.append(f"*ELEMENT, TYPE=C3D8, ELSET={elset}")
+    e = 1
+    for k in range(n[2]):
+        for j in range(n[1]):
+            for i in range(n[0]):
+                v8 = [node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                      node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
+                      node(i, j + 1, k + 1)]
+                lines.append(f"{e}, " + ", ".join(map(str, v8)))
+                e += 1
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def ball_nodes(R, n, r):
+    """Nodes of a quarter ball of radius R (x, y >= 0), n x n x 2n
+    hexahedra, finer towards its south pole (0, 0, -R): a graded block
+    [0,1]^2 x [-1,1] mapped onto the ball by p -> R p |p|_inf / |p|_2."""
+    import math
+    xs, zs = graded(n, r), [-1 + 2 * z for z in graded(2 * n, r ** 0.5)]
+    nodes = []
+    for z in zs:
+        for y in xs:
+            for x in xs:
+                norm = math.sqrt(x * x + y * y + z * z)
+                s = R * max(abs(x), abs(y), abs(z)) / norm if norm > 0 else 0.0
+                nodes.append((x * s, y * s, z * s))
+    return nodes, (n, n, 2 * n)
+
+
+def write_ball(path, R, n, r):
+    nodes, shape = ball_nodes(R, n, r)
+    write_hexahedra(path, nodes, shape, "BALL")
+    return nodes, shape
+
+
+def lumped_masses(nodes, n, rho):
+    """Row-sum lumped masses rho int N_i dV of the structured hexahedra
+    (2 x 2 x 2 Gauss points, exact for trilinear elements)."""
+    import itertools
+    node = lambda i, j, k: i + (n[0] + 1) * (j + (n[1] + 1) * k)
+    m = [0.0] * len(nodes)
+    g = 1 / 3 ** 0.5
+    corners = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
+               (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)]
+    for k, j, i in itertools.product(range(n[2]), range(n[1]), range(n[0])):
+        ids = [node(i + a, j + b, k + c) for a, b, c in
+               ((0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1))]
+        for q in itertools.product((-g, g), repeat=3):
+            N = [(1 + c[0] * q[0]) * (1 + c[1] * q[1]) * (1 + c[2] * q[2]) / 8 for c in corners]
+            J = [[sum(c[a] * (1 + c[(a + 1) % 3] * q[(a + 1) % 3]) * (1 + c[(a + 2) % 3] * q[(a + 2) % 3])
+                      / 8 * nodes[ids[v]][d] for v, c in enumerate(corners)) for d in range(3)]
+                 for a in range(3)]
+            det = (J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1])
+                   - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
+                   + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]))
+            for v in range(8):
+                m[ids[v]] += rho * N[v] * abs(det)
+    return m

@@ -126,9 +126,23 @@ namespace anvil::Contact
           friction = trial;
         }
       result.max_penetration = std::max(result.max_penetration, -l);
-      result.energy += 0.5 * k * l * l;
       ++result.n_active;
       return fn * nn;
+    }
+
+
+    /**
+     * The tributary area of node @p i of @p surf that a contact along the
+     * unit normal @p nn (out of the partner surface) presses on: the
+     * projection of the node's area vector, at least a tenth of its patch's
+     * area (a node at a corner whose patch stands nearly edge-on to the
+     * partner keeps a spring).
+     */
+    double tributary_area(const Surface &surf, const unsigned int i, const Vec &nn)
+    {
+      const double projected = -(surf.area_vector[3 * i] * nn.x + surf.area_vector[3 * i + 1] * nn.y +
+                                 surf.area_vector[3 * i + 2] * nn.z);
+      return std::max(projected, 0.1 * surf.node_area[i]);
     }
   } // namespace
 
@@ -153,8 +167,10 @@ namespace anvil::Contact
   void PenaltyContact::serialize(StateArchive &ar)
   {
     for (auto &surf : surface)
-      ar &surf.stiffness &surf.depth &surf.active &surf.node_stiffness &surf.node_depth;
+      ar &surf.active;
     ar &tangential_force[0] &tangential_force[1] &previous_tangential_force;
+    ar &partner[0] &partner[1] &spring_force[0] &spring_force[1] &spring_depth[0] &spring_depth[1]
+      &spring_work;
     // The trees are rebuilt from the positions they were built with (the
     // tree over surface s serves the pass with s as master), so the resumed
     // run rebuilds them at the same steps and finds the same candidates.
@@ -185,9 +201,14 @@ namespace anvil::Contact
     prm.declare_entry("Penalty scale factor",
                       "0.1",
                       Patterns::Double(0.),
-                      "f in the penalty stiffness k = f K A^2 / V (seed "
-                      "Eq. (59)); values above 0.4 may need a smaller time "
-                      "step. Units: none.");
+                      "f in the penalty stiffness of seed Eq. (59), k = f K A^2 / V, "
+                      "with the segment's current area A (a face that spreads "
+                      "under the impact stiffens with it, as in LS-DYNA) and "
+                      "per slave node scaled by its tributary area (k = f (K A "
+                      "/ V) A_node, so that a node on a symmetry plane or an "
+                      "edge carries its share; doc/theory.md). The time step "
+                      "follows the springs in contact; values above 0.4 may "
+                      "need a smaller time step. Units: none.");
     prm.declare_entry("Static friction coefficient",
                       "0",
                       Patterns::Double(0.),
@@ -279,7 +300,7 @@ namespace anvil::Contact
 
     for (unsigned int s = 0; s < 2; ++s)
       {
-        auto segs = (s == 0 ? first : second);
+        const auto &segs = (s == 0 ? first : second);
         // Deterministic segment order: by the pair-node indices.
         std::vector<std::pair<std::array<unsigned int, 4>, unsigned int>> order;
         for (unsigned int k = 0; k < segs.size(); ++k)
@@ -292,71 +313,106 @@ namespace anvil::Contact
         std::sort(order.begin(), order.end());
         Surface &surf = surface[s];
         surf.segments.clear();
-        surf.stiffness.clear();
-        surf.depth.clear();
+        surf.bulk.clear();
+        surf.volume.clear();
         surf.element.clear();
         surf.active.clear();
         surf.node_segments.assign(dofs.size(), {});
+        std::map<unsigned long, std::vector<unsigned int>> element_segments;
         for (const auto &[n, k] : order)
           {
-            surf.node_segments[n[0]].push_back(surf.segments.size());
-            surf.node_segments[n[1]].push_back(surf.segments.size());
-            surf.node_segments[n[2]].push_back(surf.segments.size());
-            surf.node_segments[n[3]].push_back(surf.segments.size());
+            for (unsigned int v = 0; v < 4; ++v)
+              surf.node_segments[n[v]].push_back(surf.segments.size());
+            element_segments[segs[k].element].push_back(surf.segments.size());
             surf.segments.push_back(n);
-            surf.stiffness.push_back(segs[k].stiffness);
-            surf.depth.push_back(segs[k].depth);
+            surf.bulk.push_back(segs[k].bulk_modulus);
+            surf.volume.push_back(segs[k].volume);
             surf.element.push_back(segs[k].element);
             surf.active.push_back(true);
           }
+        surf.same_element.assign(surf.segments.size(), {});
+        for (const auto &[e, list] : element_segments)
+          for (const unsigned int k : list)
+            for (const unsigned int j : list)
+              if (j != k)
+                surf.same_element[k].push_back(j);
         surf.nodes.clear();
         for (unsigned int i = 0; i < dofs.size(); ++i)
           if (!surf.node_segments[i].empty())
             surf.nodes.push_back(i);
         tangential_force[s].assign(needs_velocities() ? 3 * dofs.size() : 0, 0.);
-        surf.node_stiffness.assign(dofs.size(), 0.);
+        partner[s].assign(dofs.size(), -1);
+        spring_force[s].assign(dofs.size(), 0.);
+        spring_depth[s].assign(dofs.size(), 0.);
+        surf.area.assign(surf.segments.size(), 0.);
+        surf.area_vector.assign(3 * dofs.size(), 0.);
+        surf.node_area.assign(dofs.size(), 0.);
+        surf.node_modulus.assign(dofs.size(), 0.);
         surf.node_depth.assign(dofs.size(), 0.);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          {
-            for (const unsigned int k : surf.node_segments[i])
-              {
-                surf.node_stiffness[i] += surf.stiffness[k] / surf.node_segments[i].size();
-                surf.node_depth[i] += surf.depth[k] / surf.node_segments[i].size();
-              }
-          }
       }
+    spring_work = 0;
   }
 
 
-  double PenaltyContact::max_spring_frequency_squared() const
+  // @sect3{The current geometry}
+  //
+  // Seed Eq. (59) sets a segment's stiffness from its element, k = f K A^2
+  // / V. Evaluated once in the reference configuration, a face that spreads
+  // to five times its area under a Taylor impact keeps the stiffness of the
+  // small face, so each of its nodes carries five times the load on the
+  // same spring and sinks about an element deep. Here A is the current area
+  // (V stays the reference volume: plastic flow keeps it, and the elastic
+  // change under a contact pressure p is p / K, a few per cent at most), so
+  // the penetration under a pressure p stays l / h = p / (f K) of the
+  // element's current thickness h = V / A. Written per unit area, the
+  // spring is a pressure p = f (K A / V) l; a slave node carries it over its
+  // tributary area, the projection on the contact normal of the area
+  // vector sum A_k n_k / 4 of the segments around it, so that an interior
+  // node of a regular mesh has k = f K A^2 / V as in Eq. (59), a node on an
+  // edge or a symmetry plane half of it, and a quarter model carries a
+  // quarter of the full model's force.
+  void PenaltyContact::update_geometry(const unsigned int s, const std::vector<double> &x)
   {
-    // Slave nodes of surface s meet the master stiffness of surface 1 - s
-    // (or their own against a rigid master, or an analytic shape).
-    double w2 = 0;
-    for (unsigned int s = 0; s < 2; ++s)
+    Surface &surf = surface[s];
+    auto     pos  = [&](const unsigned int i) -> Vec {
+      return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+    };
+    for (const unsigned int i : surf.nodes)
       {
-        if (s == 0 && !symmetric && !has_analytic(1))
+        surf.area_vector[3 * i] = surf.area_vector[3 * i + 1] = surf.area_vector[3 * i + 2] = 0;
+        surf.node_area[i] = surf.node_modulus[i] = surf.node_depth[i] = 0;
+      }
+    for (unsigned int k = 0; k < surf.segments.size(); ++k)
+      {
+        if (!surf.active[k])
           continue;
-        if (has_analytic(s) || surface[s].rigid)
-          continue; // a rigid surface's nodes are not slaves that matter
-        const Surface &slave = surface[s], &master = surface[1 - s];
-        double         k_master = 0;
-        for (const double k : master.stiffness)
-          k_master = std::max(k_master, k);
-        for (const unsigned int i : slave.nodes)
+        const auto  &n = surf.segments[k];
+        const Vec    a = 0.5 * cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
+        const double A = norm(a);
+        surf.area[k]   = A;
+        const double modulus = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
+        const double depth   = A > 0 ? surf.volume[k] / A : 0.;
+        for (unsigned int j = 0; j < 4; ++j)
           {
-            // Against a rigid surface only the slave node moves: k / m. Between
-            // deformable bodies the slave and master nodes move against each
-            // other (2 k / m for equal masses), and with both passes a node is
-            // held by its own spring and by the other body's (twice that).
-            const bool   rigid_master = master.rigid || has_analytic(1 - s);
-            const double k            = penalty_factor * (rigid_master ? slave.node_stiffness[i] : k_master);
-            const double factor       = rigid_master ? 1. : (symmetric ? 4. : 2.);
-            if (node_mass[i] > 0)
-              w2 = std::max(w2, factor * k / node_mass[i]);
+            surf.area_vector[3 * n[j]] += 0.25 * a.x;
+            surf.area_vector[3 * n[j] + 1] += 0.25 * a.y;
+            surf.area_vector[3 * n[j] + 2] += 0.25 * a.z;
+            surf.node_area[n[j]] += 0.25 * A;
+            surf.node_modulus[n[j]] += modulus;
+            surf.node_depth[n[j]] += depth;
           }
       }
-    return w2;
+    for (const unsigned int i : surf.nodes)
+      {
+        unsigned int count = 0;
+        for (const unsigned int k : surf.node_segments[i])
+          count += surf.active[k] ? 1 : 0;
+        if (count > 0)
+          {
+            surf.node_modulus[i] /= count;
+            surf.node_depth[i] /= count;
+          }
+      }
   }
 
 
@@ -369,34 +425,91 @@ namespace anvil::Contact
   }
 
 
+  // @sect3{The springs' share of the stable step}
+  //
+  // The springs in reach of a partner form a stiffness K_c = sum k w w^T
+  // (times n n^T) over the pair's nodes. By Gershgorin's theorem over node
+  // blocks, the highest frequency it adds is at most max_a sum_springs k
+  // |w_a| sum_b |w_b| / m_a: per node, from the springs that actually act
+  // on it, with its own mass (a light master node under a heavy slave's
+  // spring counts, and a stiff face far from the contact does not). With
+  // the elements' omega_e, omega^2 <= omega_e^2 + omega_c^2 (the simulator's
+  // stable step). On a regular mesh of equal masses this gives 4 k / m with
+  // both passes, 2 k / m with one, k / m against a rigid surface.
+  double PenaltyContact::stable_frequency_squared() const
+  {
+    double w2 = 0;
+    for (unsigned int i = 0; i < spring_load.size() && i < node_mass.size(); ++i)
+      if (spring_load[i] > 0 && node_mass[i] > 0)
+        w2 = std::max(w2, spring_load[i] / node_mass[i]);
+    return w2;
+  }
+
+
   ContactResult PenaltyContact::compute_forces(const std::vector<double> &x,
                                                const std::vector<double> &v,
                                                const double               dt,
                                                std::vector<double>       &f)
   {
     ContactResult result;
+    spring_load.assign(dofs.size(), 0.);
+    for (unsigned int s = 0; s < 2; ++s)
+      if (!has_analytic(s))
+        update_geometry(s, x);
     // A rigid body's analytic shape: the other body's nodes against it.
     if (has_analytic(0) || has_analytic(1))
       {
         const unsigned int a = has_analytic(0) ? 0 : 1;
-        analytic_pass(surface[1 - a], analytic[a], x, v, dt, f, a == 1, tangential_force[1 - a], result);
-        return result;
+        analytic_pass(1 - a, x, v, dt, f, result);
       }
-    // Pass 1: the second body's nodes against the first body's segments.
-    for (unsigned int s = 0; s < 2; ++s)
-      if (!search[s])
-        {
-          search[s] = std::make_shared<SearchTree>();
-          double thinnest = 1e300;
-          for (const double d : surface[s].depth)
-            thinnest = std::min(thinnest, d);
-          search[s]->safety = 0.5 * thinnest;
-        }
-    pass(surface[1], surface[0], *search[0], x, v, dt, f, false, tangential_force[1], result);
-    // Pass 2 (symmetric): the first body's nodes against the second's.
-    if (symmetric)
-      pass(surface[0], surface[1], *search[1], x, v, dt, f, true, tangential_force[0], result);
+    else
+      {
+        for (unsigned int s = 0; s < 2; ++s)
+          if (!search[s])
+            {
+              search[s] = std::make_shared<SearchTree>();
+              double thinnest = 1e300;
+              for (unsigned int k = 0; k < surface[s].segments.size(); ++k)
+                thinnest = std::min(thinnest, surface[s].volume[k] / surface[s].area[k]);
+              search[s]->safety = 0.5 * thinnest;
+            }
+        // Pass 1: the second body's nodes against the first body's segments.
+        pass(1, *search[0], x, v, dt, f, result);
+        // Pass 2 (symmetric): the first body's nodes against the second's.
+        if (symmetric)
+          pass(0, *search[1], x, v, dt, f, result);
+      }
+    result.energy            = spring_work;
+    result.frequency_squared = stable_frequency_squared();
     return result;
+  }
+
+
+  // Start a pass over slave surface @p s: this step's spring forces and
+  // penetrations start from zero, last step's are kept for the work.
+  // (With friction, the tangential forces likewise.)
+  namespace
+  {
+    void start_pass(std::vector<double> &current, std::vector<double> &old)
+    {
+      old.assign(current.begin(), current.end());
+      std::fill(current.begin(), current.end(), 0.);
+    }
+  } // namespace
+
+
+  // The work on a pass's springs over the step, by the trapezoidal rule in
+  // the penetration l (the energy of every other force in Anvil is booked
+  // the same way): 1/2 (f^{n-1} + f^n)(l^n - l^{n-1}), with f = l = 0 for a
+  // node out of contact. With a constant stiffness the sum telescopes to
+  // 1/2 k l^2; with a stiffness that follows the geometry it is the work
+  // the springs actually took, so the energy balance stays closed.
+  void PenaltyContact::book_spring_work(const unsigned int s)
+  {
+    const auto &f1 = spring_force[s], &l1 = spring_depth[s];
+    for (const unsigned int i : surface[s].nodes)
+      if (f1[i] != 0 || old_spring_force[i] != 0)
+        spring_work += 0.5 * (old_spring_force[i] + f1[i]) * (l1[i] - old_spring_depth[i]);
   }
 
 
@@ -405,45 +518,49 @@ namespace anvil::Contact
   // Exact geometry: the gap of each slave node is its signed distance from
   // the sphere, cylinder or plane, the normal the shape's normal there; the
   // stiffness is the slave side's (Eq. (59) with the slave element's K, A,
-  // V). The reactions act on the rigid body as a resultant force and a
-  // torque about its centre.
-  void PenaltyContact::analytic_pass(const Surface             &slave,
-                                     const AnalyticSurface     &a,
+  // V, over the node's tributary area). The reactions act on the rigid body
+  // as a resultant force and a torque about its centre.
+  void PenaltyContact::analytic_pass(const unsigned int         slave_index,
                                      const std::vector<double> &x,
                                      const std::vector<double> &v,
                                      const double               dt,
                                      std::vector<double>       &f,
-                                     const bool                 slave_is_first,
-                                     std::vector<double>       &ft,
-                                     ContactResult             &result) const
+                                     ContactResult             &result)
   {
-    std::vector<double> &ft_old = previous_tangential_force;
+    const Surface          &slave          = surface[slave_index];
+    const AnalyticSurface  &a              = analytic[1 - slave_index];
+    const bool              slave_is_first = slave_index == 0;
+    std::vector<double>    &ft             = tangential_force[slave_index];
+    std::vector<double>    &ft_old         = previous_tangential_force;
     if (needs_velocities())
-      {
-        ft_old.assign(ft.begin(), ft.end());
-        std::fill(ft.begin(), ft.end(), 0.);
-      }
+      start_pass(ft, ft_old);
+    start_pass(spring_force[slave_index], old_spring_force);
+    start_pass(spring_depth[slave_index], old_spring_depth);
     for (const unsigned int s : slave.nodes)
       {
-        bool on_surface = false;
-        for (const unsigned int k : slave.node_segments[s])
-          on_surface |= slave.active[k];
-        if (!on_surface)
+        if (!(slave.node_area[s] > 0)) // every segment around it eroded
           continue;
         const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
         dealii::Tensor<1, 3>   normal;
-        const double l = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
-        if (!(l < 0) || -l > slave.node_depth[s])
+        const double l     = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
+        const double depth = slave.node_depth[s];
+        if (!(l < depth) || -l > depth)
           continue;
         const Vec    nn = {normal[0], normal[1], normal[2]};
-        const double k  = penalty_factor * slave.node_stiffness[s];
-        Vec          vr = {0, 0, 0};
+        const double k  = penalty_factor * slave.node_modulus[s] * tributary_area(slave, s, nn);
+        spring_load[s] += k; // the shape does not move with the spring
+        if (!(l < 0))
+          continue;
+        Vec vr = {0, 0, 0};
         if (needs_velocities() && dt > 0)
           {
             const dealii::Tensor<1, 3> vb =
               a.velocity + cross_product_3d(a.angular_velocity, xs - a.centre);
             vr = Vec{v[3 * s] - vb[0], v[3 * s + 1] - vb[1], v[3 * s + 2] - vb[2]};
           }
+        spring_force[slave_index][s] = -k * l;
+        spring_depth[slave_index][s] = -l;
+        result.max_penetration_ratio = std::max(result.max_penetration_ratio, -l / depth);
         Vec       ff;
         const Vec fs = interface_forces(*this, s, l, nn, k, vr, dt,
                                         node_mass.empty() ? 0. : node_mass[s], ft_old, ft, result, ff);
@@ -462,28 +579,30 @@ namespace anvil::Contact
         result.friction_on_first[1] += sign * ff.y;
         result.friction_on_first[2] += sign * ff.z;
       }
+    book_spring_work(slave_index);
   }
 
 
-  void PenaltyContact::pass(const Surface             &slave,
-                            const Surface             &master,
+  void PenaltyContact::pass(const unsigned int         slave_index,
                             SearchTree                &search,
                             const std::vector<double> &x,
                             const std::vector<double> &v,
                             const double               dt,
                             std::vector<double>       &f,
-                            const bool                 slave_is_first,
-                            std::vector<double>       &ft,
-                            ContactResult             &result) const
+                            ContactResult             &result)
   {
-    const bool needs_v = needs_velocities();
+    const Surface &slave          = surface[slave_index];
+    const Surface &master         = surface[1 - slave_index];
+    const bool     slave_is_first = slave_index == 0;
+    const bool     needs_v        = needs_velocities();
+    std::vector<double> &ft       = tangential_force[slave_index];
+    std::vector<int>    &partners = partner[slave_index];
     // Friction forces of nodes that leave contact this step are released.
     std::vector<double> &ft_old = previous_tangential_force;
     if (needs_v)
-      {
-        ft_old.assign(ft.begin(), ft.end());
-        std::fill(ft.begin(), ft.end(), 0.);
-      }
+      start_pass(ft, ft_old);
+    start_pass(spring_force[slave_index], old_spring_force);
+    start_pass(spring_depth[slave_index], old_spring_depth);
     auto pos = [&](const unsigned int i) -> Vec {
       return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     };
@@ -507,8 +626,9 @@ namespace anvil::Contact
           }
         drift2 = std::max(drift2, d2);
       }
-    for (const double d : master.depth)
-      max_depth = std::max(max_depth, d);
+    for (unsigned int k = 0; k < master.segments.size(); ++k)
+      if (master.active[k])
+        max_depth = std::max(max_depth, master.volume[k] / master.area[k]);
     if (master.nodes.empty())
       return;
     double drift = std::sqrt(drift2);
@@ -523,19 +643,6 @@ namespace anvil::Contact
         drift        = 0;
       }
     const auto &tree = search.tree;
-
-    // Slave node normals: area-weighted average of the normals of the
-    // slave segments around each node, in the current configuration.
-    std::vector<Vec> slave_normal(x.size() / 3, Vec{0, 0, 0});
-    for (unsigned int k = 0; k < slave.segments.size(); ++k)
-      {
-        if (!slave.active[k])
-          continue;
-        const auto &n = slave.segments[k];
-        const Vec   a = cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
-        for (unsigned int j = 0; j < 4; ++j)
-          slave_normal[n[j]] = slave_normal[n[j]] + a;
-      }
 
     // Step (3), seed Eqs. (54)-(55): Newton iterations for the closest
     // point r(xi, eta) of the bilinear segment to t:
@@ -578,8 +685,10 @@ namespace anvil::Contact
     std::vector<Value> nearest;
     for (const unsigned int s : slave.nodes)
       {
+        const int previous = partners[s];
+        partners[s]        = -1;
         // A node whose every segment is eroded is no longer on the surface.
-        if (norm(slave_normal[s]) == 0.)
+        if (!(slave.node_area[s] > 0))
           continue;
         const Vec t = pos(s);
         // Cheap rejection: outside the master surface's box by more than
@@ -614,8 +723,6 @@ namespace anvil::Contact
                   }
               }
           }
-        const Vec          xm = pos(m);
-        const Vec          g  = t - xm;
 
         // @sect4{Step (2): candidate segments, seed Eqs. (50)-(53)}
         // For each segment S_i around m, C_i and C_{i+1} are its two edges
@@ -631,53 +738,85 @@ namespace anvil::Contact
         // most negative n_master . n_slave, which weighs more than the
         // (50)-(52) test; and no segment facing the same way as the slave
         // surface, or nearly perpendicular to it, is ever a contact partner.
-        const Vec    ns    = slave_normal[s];
+        //
+        // Two more candidates make the search hold through thin walls. The
+        // segment that held the node last step stays a candidate: once a
+        // node has passed the middle of a wall one element thick, its
+        // nearest master node is on the back face, whose segments face
+        // away. And where the segments around m give no partner, the other
+        // faces of their elements are tried (the front face of that wall).
+        const Vec    ns    = {slave.area_vector[3 * s], slave.area_vector[3 * s + 1],
+                              slave.area_vector[3 * s + 2]};
         const double ns_n  = norm(ns);
         int          chosen = -1;
         double       best   = 1e300;
         double       xi_c = 0, eta_c = 0;
+        auto consider = [&](const unsigned int seg) {
+          if (!master.active[seg])
+            return;
+          const auto  &n = master.segments[seg];
+          // The two edges at the segment's node nearest to t (m, where m
+          // is one of its nodes).
+          unsigned int k = 0;
+          double       d_min = 1e300;
+          for (unsigned int j = 0; j < 4; ++j)
+            {
+              const Vec    gj = t - pos(n[j]);
+              const double dj = n[j] == m ? -1. : dot(gj, gj);
+              if (dj < d_min)
+                {
+                  d_min = dj;
+                  k     = j;
+                }
+            }
+          const Vec    xk  = pos(n[k]);
+          const Vec    gk  = t - xk;
+          const Vec    Ci  = pos(n[(k + 1) % 4]) - xk;
+          const Vec    Ci1 = pos(n[(k + 3) % 4]) - xk;
+          const Vec    cc  = cross(Ci, Ci1);
+          const double cn  = norm(cc);
+          if (cn == 0)
+            return;
+          const Vec    mn     = (1. / cn) * cc;         // Eq. (52)
+          const Vec    S      = gk - dot(gk, mn) * mn;  // Eq. (51)
+          const double facing = ns_n > 0 ? dot(mn, ns) / ns_n : -1.;
+          // A face nearly perpendicular to the slave surface is no partner:
+          // "penetration" along its normal is the slave node passing under
+          // a convex edge (a block sliding over a slab meets the slab's
+          // nodes at its front face).
+          if (facing > -0.2)
+            return;
+          const bool decided = norm(S) > 1e-6 * norm(gk) &&
+                               dot(cross(Ci, S), cc) > 0 &&
+                               dot(cross(Ci, S), cross(S, Ci1)) > 0;
+          double xi, eta;
+          project(master, seg, t, xi, eta);
+          // Inside the segment first; then inside its extension by
+          // 'edge_tolerance' (a node pressed against the rim of the master
+          // surface stays in contact instead of flickering in and out).
+          const double out   = std::max(std::abs(xi), std::abs(eta)) - 1.;
+          const double score = (out <= 1e-9 ? 0. : out <= edge_tolerance ? 5. : 100.) +
+                               (decided ? -1. : 0.) + 2. * facing;
+          if (score < best)
+            {
+              best   = score;
+              chosen = seg;
+              xi_c   = xi;
+              eta_c  = eta;
+            }
+        };
         for (const unsigned int seg : master.node_segments[m])
+          consider(seg);
+        if (previous >= 0)
           {
-            if (!master.active[seg])
-              continue;
-            const auto  &n = master.segments[seg];
-            unsigned int k = 0;
-            while (n[k] != m)
-              ++k;
-            const Vec    Ci  = pos(n[(k + 1) % 4]) - xm;
-            const Vec    Ci1 = pos(n[(k + 3) % 4]) - xm;
-            const Vec    cc  = cross(Ci, Ci1);
-            const double cn  = norm(cc);
-            if (cn == 0)
-              continue;
-            const Vec    mn     = (1. / cn) * cc; // Eq. (52)
-            const Vec    S      = g - dot(g, mn) * mn; // Eq. (51)
-            const double facing = ns_n > 0 ? dot(mn, ns) / ns_n : -1.;
-            // A face nearly perpendicular to the slave surface is no partner:
-            // "penetration" along its normal is the slave node passing under
-            // a convex edge (a block sliding over a slab meets the slab's
-            // nodes at its front face).
-            if (facing > -0.2)
-              continue;
-            const bool decided = norm(S) > 1e-6 * norm(g) &&
-                                 dot(cross(Ci, S), cc) > 0 &&
-                                 dot(cross(Ci, S), cross(S, Ci1)) > 0;
-            double xi, eta;
-            project(master, seg, t, xi, eta);
-            // Inside the segment first; then inside its extension by
-            // 'edge_tolerance' (a node pressed against the rim of the master
-            // surface stays in contact instead of flickering in and out).
-            const double out    = std::max(std::abs(xi), std::abs(eta)) - 1.;
-            const double score  = (out <= 1e-9 ? 0. : out <= edge_tolerance ? 5. : 100.) +
-                                 (decided ? -1. : 0.) + 2. * facing;
-            if (score < best)
-              {
-                best   = score;
-                chosen = seg;
-                xi_c   = xi;
-                eta_c  = eta;
-              }
+            const auto &around = master.node_segments[m];
+            if (std::find(around.begin(), around.end(), (unsigned int)previous) == around.end())
+              consider(previous);
           }
+        if (chosen < 0 || best >= 50.)
+          for (const unsigned int seg : master.node_segments[m])
+            for (const unsigned int other : master.same_element[seg])
+              consider(other);
         if (chosen < 0 || best >= 50.)
           continue;
 
@@ -698,16 +837,46 @@ namespace anvil::Contact
           }
 
         // @sect4{Step (4): penetration, seed Eqs. (56)-(57)}
-        const Vec    nc = cross(r_xi, r_eta);
-        const Vec    nn = (1. / norm(nc)) * nc;
-        const double l  = dot(nn, t - r);
-        if (!(l < 0) || -l > master.depth[chosen])
+        const Vec    nc    = cross(r_xi, r_eta);
+        const Vec    nn    = (1. / norm(nc)) * nc;
+        const double l     = dot(nn, t - r);
+        const double depth = master.volume[chosen] / master.area[chosen];
+        if (!(l < depth) || -l > depth)
           continue;
 
         // @sect4{Step (5): normal force, seed Eqs. (58)-(60)}
-        // Against a rigid surface the stiffness is the slave side's (the
-        // rigid body's own elements say nothing of the contact stiffness).
-        const double k  = penalty_factor * (master.rigid ? slave.node_stiffness[s] : master.stiffness[chosen]);
+        // The pressure stiffness f K A / V of the master segment's element
+        // over the slave node's tributary area; against a rigid surface the
+        // slave side's (the rigid body's own elements say nothing of the
+        // contact stiffness).
+        const double modulus = master.rigid ? slave.node_modulus[s] : master.bulk[chosen] * master.area[chosen] / master.volume[chosen];
+        const double k = penalty_factor * modulus * tributary_area(slave, s, nn);
+        // The stable step: a node within the thickness of its partner's
+        // element may be in contact by the next step, so its spring counts
+        // (see stable_frequency_squared()): the spring k (n . (u_s - sum_j
+        // phi_j u_j))^2 adds k |w_a| sum_b |w_b| to the row of each of its
+        // nodes a, with w = (1, -phi_j) over the nodes that move (a rigid
+        // body's do not: its mass is the body's).
+        {
+          const double w_master = master.rigid ? 0. :
+                                    std::abs(phi[0]) + std::abs(phi[1]) + std::abs(phi[2]) +
+                                      std::abs(phi[3]);
+          const double w_sum    = (slave.rigid ? 0. : 1.) + w_master;
+          if (!slave.rigid)
+            spring_load[s] += k * w_sum;
+          if (!master.rigid)
+            for (unsigned int j = 0; j < 4; ++j)
+              spring_load[n[j]] += k * std::abs(phi[j]) * w_sum;
+        }
+        if (!(l < 0))
+          continue;
+        partners[s] = chosen;
+        spring_force[slave_index][s] = -k * l;
+        spring_depth[slave_index][s] = -l;
+        // The thickness of the element the spring stands for: the master's,
+        // or against a rigid surface the slave's own.
+        result.max_penetration_ratio =
+          std::max(result.max_penetration_ratio, -l / (master.rigid ? slave.node_depth[s] : depth));
         Vec          vr = {0, 0, 0};
         if (needs_v && dt > 0)
           {
@@ -730,15 +899,14 @@ namespace anvil::Contact
             f[3 * n[j] + 1] -= phi[j] * total.y;
             f[3 * n[j] + 2] -= phi[j] * total.z;
           }
-        const double sg = slave_is_first ? 1. : -1.;
-        result.friction_on_first[0] += sg * ff.x;
-        result.friction_on_first[1] += sg * ff.y;
-        result.friction_on_first[2] += sg * ff.z;
-
         const double sign = slave_is_first ? 1. : -1.;
+        result.friction_on_first[0] += sign * ff.x;
+        result.friction_on_first[1] += sign * ff.y;
+        result.friction_on_first[2] += sign * ff.z;
         result.force_on_first[0] += sign * fs.x;
         result.force_on_first[1] += sign * fs.y;
         result.force_on_first[2] += sign * fs.z;
       }
+    book_spring_work(slave_index);
   }
 } // namespace anvil::Contact

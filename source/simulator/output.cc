@@ -137,7 +137,8 @@ namespace anvil
             contact_files.emplace_back(output_directory + "/contact_" + c.name + ".csv");
             contact_files.back()
               << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration,"
-                 "friction_force_x,friction_force_y,friction_force_z\n";
+                 "friction_force_x,friction_force_y,friction_force_z,max_penetration_ratio,"
+                 "active_nodes\n";
           }
       }
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
@@ -205,7 +206,8 @@ namespace anvil
         contact_files[c] << std::setprecision(12) << t << ',' << r.force_on_first[0]
                          << ',' << r.force_on_first[1] << ',' << r.force_on_first[2]
                          << ',' << r.max_penetration << ',' << r.friction_on_first[0] << ','
-                         << r.friction_on_first[1] << ',' << r.friction_on_first[2] << '\n';
+                         << r.friction_on_first[1] << ',' << r.friction_on_first[2] << ','
+                         << r.max_penetration_ratio << ',' << r.n_active << '\n';
       }
     // All histories reach the disk together, at most a second or 1,000 rows
     // apart.

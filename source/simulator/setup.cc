@@ -459,7 +459,6 @@ namespace anvil
                   if (cell->face(f)->at_boundary())
                     {
                       const auto   face     = cell->face(f);
-                      const double A        = face->measure();
                       const double V        = cell->measure();
                       const double K        = bodies[body[s]].material->bulk_modulus();
                       constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
@@ -479,8 +478,8 @@ namespace anvil
                           for (unsigned int d = 0; d < 3; ++d)
                             local.push_back(face->vertex(kk)[d]);
                         }
-                      local.push_back(K * A * A / V);
-                      local.push_back(V / A);
+                      local.push_back(K);
+                      local.push_back(V);
                       local.push_back(cell->id().get_coarse_cell_id());
                     }
             for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
@@ -491,8 +490,8 @@ namespace anvil
                     d.x_dof[k] = static_cast<unsigned long>(part[i + k]);
                   for (unsigned int k = 0; k < 12; ++k)
                     d.reference_position[k] = part[i + 4 + k];
-                  d.stiffness = part[i + 16];
-                  d.depth     = part[i + 17];
+                  d.bulk_modulus = part[i + 16];
+                  d.volume       = part[i + 17];
                   d.element   = static_cast<unsigned long>(part[i + 18]);
                   segments[s].push_back(d);
                 }
@@ -511,7 +510,7 @@ namespace anvil
               long(position.get_partitioner()->global_to_local(dofs[i])) :
               -1;
         // The pair's node masses (normal damping, the springs' frequency in
-        // the stable step).
+        // the stable step, which each evaluation updates).
         std::vector<double> m(dofs.size(), 0.);
         for (unsigned int i = 0; i < dofs.size(); ++i)
           if (contact_local_index[p][i] >= 0)
@@ -519,8 +518,6 @@ namespace anvil
         Utilities::MPI::sum(m, mpi_communicator, m);
         contact_pairs[p].set_node_masses(m);
         place_analytic_shapes(p);
-        contact_frequency_squared =
-          std::max(contact_frequency_squared, contact_pairs[p].max_spring_frequency_squared());
         contact_positions[p].resize(3 * dofs.size());
         if (contact_pairs[p].needs_velocities())
           contact_velocities[p].resize(3 * dofs.size());

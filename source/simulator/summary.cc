@@ -145,6 +145,10 @@ namespace anvil
       out << "max_balance_error," << summary.max_balance_error << '\n';
       out << "wall_time_s," << wall_time << '\n';
       out << "steps," << step_number << '\n';
+      // What the contact springs cost: the steps the elements alone would
+      // have needed, and how many steps the springs made smaller.
+      out << "steps_elements_only," << summary.element_steps << '\n';
+      out << "contact_limited_steps," << summary.contact_limited_steps << '\n';
       out << "elements," << triangulation.n_global_active_cells() << '\n';
       out << "processes," << Utilities::MPI::n_mpi_processes(mpi_communicator) << '\n';
     }

@@ -17,7 +17,7 @@ elements), and the errors must be smaller there than at 8 x 8 x 16.
 """
 import math
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, write_ball, write_scene
 
 args = arguments()
 c = Checker("Hertz: elastic sphere on a rigid plane")
@@ -29,41 +29,9 @@ F_max = 4 / 3 * Es * math.sqrt(R) * delta ** 1.5
 t_c = 2.9432 * delta / v
 
 
-def graded(n, r):
-    sizes = [r ** i for i in range(n)]
-    x = [0.0]
-    for h in sizes:
-        x.append(x[-1] + h / sum(sizes))
-    return x
-
-
-def write_ball(path, n, r):
-    """Quarter ball, n x n x 2n hexahedra, finer towards (0, 0, -R)."""
-    xs, zs = graded(n, r), [-1 + 2 * z for z in graded(2 * n, r ** 0.5)]
-    node = lambda i, j, k: 1 + i + (n + 1) * (j + (n + 1) * k)
-    lines = ["*NODE"]
-    for k, z in enumerate(zs):
-        for j, y in enumerate(xs):
-            for i, x in enumerate(xs):
-                norm = math.sqrt(x * x + y * y + z * z)
-                s = R * max(abs(x), abs(y), abs(z)) / norm if norm > 0 else 0.0
-                lines.append(f"{node(i, j, k)}, {x * s:.14g}, {y * s:.14g}, {z * s:.14g}")
-    lines.append("*ELEMENT, TYPE=C3D8, ELSET=BALL")
-    e = 1
-    for k in range(2 * n):
-        for j in range(n):
-            for i in range(n):
-                v8 = [node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
-                      node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)]
-                lines.append(f"{e}, " + ", ".join(map(str, v8)))
-                e += 1
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-
-
 def run(n):
     name = f"ball_{n}"
-    write_ball(os.path.join(args.work_dir, name + ".inp"), n, 1.15)
+    write_ball(os.path.join(args.work_dir, name + ".inp"), R, n, 1.15)
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
 # Elastic quarter sphere dropped on a rigid plane (Hertz).
 set Bodies = floor, ball

@@ -28,26 +28,32 @@ namespace anvil::Contact
     /** Nodes (indices into the pair's node list) of each segment, cyclic,
         ordered so that (x1-x0) x (x3-x0) points out of the body. */
     std::vector<std::array<unsigned int, 4>> segments;
-    /** K A^2 / V of each segment's element (seed Eq. (59) without f).
-        Units: N/m. */
-    std::vector<double> stiffness;
-    /** Thickness V / A of each segment's element: the deepest penetration
-        accepted as contact. Units: m. */
-    std::vector<double> depth;
+    /** Bulk modulus K and reference volume V of each segment's element
+        (seed Eq. (59), k = f K A^2 / V, is evaluated with the segment's
+        current area A). Units: Pa, m^3. */
+    std::vector<double> bulk, volume;
     /** Scene-wide id of each segment's element, and whether the segment
         still takes part (its element has not been eroded). */
     std::vector<unsigned long> element;
     std::vector<bool>          active;
     /** Segments around each node of the pair's node list. */
     std::vector<std::vector<unsigned int>> node_segments;
+    /** The other segments of each segment's element on this surface (a
+        wall one element thick: its front and back faces). */
+    std::vector<std::vector<unsigned int>> same_element;
     /** The pair's nodes on this surface. */
     std::vector<unsigned int> nodes;
-    /** Per pair node: mean stiffness and thickness of this surface's
-        segments around it (the slave side's contact stiffness against a
-        rigid surface). */
-    std::vector<double> node_stiffness, node_depth;
     /** Whether the surface belongs to a rigid body. */
     bool rigid = false;
+
+    /** The current geometry, refreshed at every evaluation
+        (update_geometry()): per segment its area; per pair node the area
+        vector of its tributary patch, sum over the active segments around
+        it of A n / 4, the patch's area, and the mean over those segments of
+        the contact modulus K A / V and of the thickness V / A. Units: m^2,
+        m^2, m^2, Pa/m, m. */
+    std::vector<double> area;
+    std::vector<double> area_vector, node_area, node_modulus, node_depth;
   };
 
   /** The placement of a rigid body's analytic contact shape. */
@@ -64,8 +70,9 @@ namespace anvil::Contact
   {
     std::array<unsigned long, 4> x_dof;
     std::array<double, 12>       reference_position;
-    double                       stiffness;
-    double                       depth;
+    /** Bulk modulus and reference volume of the segment's element. */
+    double bulk_modulus;
+    double volume;
     /** Scene-wide id of the segment's element. */
     unsigned long element = 0;
   };
@@ -77,8 +84,19 @@ namespace anvil::Contact
     std::array<double, 3> force_on_first = {{0, 0, 0}};
     /** Deepest penetration found in either pass. Units: m. */
     double max_penetration = 0;
-    /** Energy stored in the penalty springs, 1/2 k l^2. Units: J. */
+    /** Largest penetration as a fraction of the current thickness V / A of
+        the element that the penalty spring stands for. Units: none. */
+    double max_penetration_ratio = 0;
+    /** Work done so far on the penalty springs, the sum over steps of
+        1/2 (f^{n-1} + f^n) (l^n - l^{n-1}) per spring: 1/2 k l^2 while k is
+        constant, and the energy balance stays closed when k follows the
+        current geometry. Units: J. */
     double energy = 0;
+    /** The square of the highest frequency that the springs which act, or
+        may act within the next step (a slave node within the thickness of
+        its partner's element), can add: a bound per node from the springs
+        on it and its mass. Units: 1/s^2. */
+    double frequency_squared = 0;
     /** Work done this step against the friction forces (dissipated, or
         stored in sticking tangential springs), >= 0 for sliding, and
         dissipated by the normal damping. Units: J. */
@@ -160,13 +178,6 @@ namespace anvil::Contact
       return analytic[s].shape != nullptr;
     }
 
-    /**
-     * Largest k / m of the pair's penalty springs over the slave nodes of
-     * both passes, with m the slave node's lumped mass: the square of the
-     * highest frequency the springs add to a node. Needs the node masses.
-     */
-    double max_spring_frequency_squared() const;
-
     /** Lumped masses of the pair's nodes (for the normal damping). */
     void set_node_masses(const std::vector<double> &masses)
     {
@@ -189,40 +200,60 @@ namespace anvil::Contact
         their positions when it was built), kept from step to step. */
     struct SearchTree;
 
-    /** One pass: nodes of @p slave against segments of @p master. */
-    void pass(const Surface             &slave,
-              const Surface             &master,
+    /** One pass: nodes of surface @p s against the segments of the
+        other surface. */
+    void pass(unsigned int               s,
               SearchTree                &search,
               const std::vector<double> &x,
               const std::vector<double> &v,
               double                     dt,
               std::vector<double>       &f,
-              bool                       slave_is_first,
-              std::vector<double>       &tangential_force,
-              ContactResult             &result) const;
+              ContactResult             &result);
+
+    /** The current areas, tributary area vectors, moduli and thicknesses
+        of surface @p s at positions @p x. */
+    void update_geometry(unsigned int s, const std::vector<double> &x);
+
+    /** Book the work on the penalty springs of pass @p s (the slave
+        surface) from last step's and this step's spring forces and
+        penetrations. */
+    void book_spring_work(unsigned int s);
 
     std::vector<unsigned long> dofs;
     std::vector<bool>          on_first;
     Surface                    surface[2];
-    /** Per pass, the friction force (3 per pair node) of the last step;
-        zero for nodes not in contact. */
+    /** Per pass (by slave surface), the friction force (3 per pair node)
+        of the last step; zero for nodes not in contact. */
     std::vector<double> tangential_force[2];
+    /** Per pass and pair node: the master segment that held the node last
+        step (-1: none; kept as a candidate, so that a node that has passed
+        the middle of a thin wall keeps the face it penetrated), and the
+        spring force k l and penetration l of this and the last step. */
+    std::vector<int>    partner[2];
+    std::vector<double> spring_force[2], spring_depth[2];
+    std::vector<double> old_spring_force, old_spring_depth;
+    /** Work done on the penalty springs so far. Units: J. */
+    double spring_work = 0;
     std::vector<double> node_mass;
+    /** Per pair node, this evaluation's sum over the springs in reach of
+        k |w_a| sum_b |w_b| (stable_frequency_squared()). Units: N/m. */
+    std::vector<double> spring_load;
+    /** The square of the highest frequency the springs in reach can add:
+        max over nodes of spring_load / mass. Units: 1/s^2. */
+    double stable_frequency_squared() const;
     /** Work arrays of a pass (kept, so that a step allocates nothing):
         the tangential forces of the previous step, and slave normals. */
     mutable std::vector<double> previous_tangential_force;
     AnalyticSurface     analytic[2];
     std::shared_ptr<SearchTree> search[2];
 
-    /** The slave nodes of @p slave against the analytic shape @p a. */
-    void analytic_pass(const Surface             &slave,
-                       const AnalyticSurface     &a,
+    /** The slave nodes of surface @p s against the analytic shape of the
+        other. */
+    void analytic_pass(unsigned int               s,
                        const std::vector<double> &x,
                        const std::vector<double> &v,
                        double                     dt,
                        std::vector<double>       &f,
-                       bool                       slave_is_first,
-                       std::vector<double>       &tangential_force,
-                       ContactResult             &result) const;
+                       ContactResult             &result);
   };
 } // namespace anvil::Contact

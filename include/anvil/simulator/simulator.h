@@ -256,6 +256,11 @@ namespace anvil
       double max_hourglass_ratio   = 0;
       double max_balance_error     = 0;
       double peak_reaction         = 0;
+      /** The steps the elements alone would have needed (the sum over steps
+          of dt / dt_elements) and the steps whose size the contact springs
+          set. */
+      double       element_steps         = 0;
+      unsigned int contact_limited_steps = 0;
       /** Start of the current quiet period (end criterion), -1: none; the
           first probe's displacement summed over its history rows. */
       double       quiet_since = -1;
