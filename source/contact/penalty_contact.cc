@@ -144,6 +144,31 @@ namespace anvil::Contact
                                  surf.area_vector[3 * i + 2] * nn.z);
       return std::max(projected, 0.1 * surf.node_area[i]);
     }
+
+    /**
+     * The penalty stiffness of node @p i of @p surf pressed along @p nn
+     * against a rigid partner, from its own side: each segment around it
+     * contributes its pressure modulus f K A / V (applied by the caller)
+     * over its quarter area projected on the contact normal. A segment
+     * edge-on to the partner (the side of a bar at the rim of its impact
+     * face) carries no pressure and adds nothing, so a rim node is as stiff
+     * per area as the face it belongs to. At least a tenth of the mean
+     * modulus over the node's patch.
+     */
+    double own_stiffness(const Surface &surf, const unsigned int i, const Vec &nn)
+    {
+      double k = 0;
+      for (const unsigned int seg : surf.node_segments[i])
+        if (surf.active[seg])
+          {
+            const double projected =
+              -(surf.segment_area_vector[3 * seg] * nn.x + surf.segment_area_vector[3 * seg + 1] * nn.y +
+                surf.segment_area_vector[3 * seg + 2] * nn.z);
+            if (projected > 0)
+              k += surf.modulus[seg] * 0.25 * projected;
+          }
+      return std::max(k, 0.1 * surf.node_modulus[i] * surf.node_area[i]);
+    }
   } // namespace
 
 
@@ -206,9 +231,14 @@ namespace anvil::Contact
                       "under the impact stiffens with it, as in LS-DYNA) and "
                       "per slave node scaled by its tributary area (k = f (K A "
                       "/ V) A_node, so that a node on a symmetry plane or an "
-                      "edge carries its share; doc/theory.md). The time step "
-                      "follows the springs in contact; values above 0.4 may "
-                      "need a smaller time step. Units: none.");
+                      "edge carries its share); K, A, V of the master "
+                      "segment's element, or against a rigid surface of the "
+                      "slave node's own. Under a pressure p a face sinks p / "
+                      "(f K) of its element's thickness (doc/theory.md). The "
+                      "springs in contact lower the time step while they act "
+                      "(with f = 1, for example, by about 7 % on a bar against "
+                      "a rigid wall, a third between two deformable bodies). "
+                      "Units: none.");
     prm.declare_entry("Static friction coefficient",
                       "0",
                       Patterns::Double(0.),
@@ -345,6 +375,8 @@ namespace anvil::Contact
         spring_force[s].assign(dofs.size(), 0.);
         spring_depth[s].assign(dofs.size(), 0.);
         surf.area.assign(surf.segments.size(), 0.);
+        surf.modulus.assign(surf.segments.size(), 0.);
+        surf.segment_area_vector.assign(3 * surf.segments.size(), 0.);
         surf.area_vector.assign(3 * dofs.size(), 0.);
         surf.node_area.assign(dofs.size(), 0.);
         surf.node_modulus.assign(dofs.size(), 0.);
@@ -390,7 +422,11 @@ namespace anvil::Contact
         const Vec    a = 0.5 * cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
         const double A = norm(a);
         surf.area[k]   = A;
+        surf.segment_area_vector[3 * k]     = a.x;
+        surf.segment_area_vector[3 * k + 1] = a.y;
+        surf.segment_area_vector[3 * k + 2] = a.z;
         const double modulus = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
+        surf.modulus[k]      = modulus;
         const double depth   = A > 0 ? surf.volume[k] / A : 0.;
         for (unsigned int j = 0; j < 4; ++j)
           {
@@ -547,7 +583,7 @@ namespace anvil::Contact
         if (!(l < depth) || -l > depth)
           continue;
         const Vec    nn = {normal[0], normal[1], normal[2]};
-        const double k  = penalty_factor * slave.node_modulus[s] * tributary_area(slave, s, nn);
+        const double k  = penalty_factor * own_stiffness(slave, s, nn);
         spring_load[s] += k; // the shape does not move with the spring
         if (!(l < 0))
           continue;
@@ -849,8 +885,8 @@ namespace anvil::Contact
         // over the slave node's tributary area; against a rigid surface the
         // slave side's (the rigid body's own elements say nothing of the
         // contact stiffness).
-        const double modulus = master.rigid ? slave.node_modulus[s] : master.bulk[chosen] * master.area[chosen] / master.volume[chosen];
-        const double k = penalty_factor * modulus * tributary_area(slave, s, nn);
+        const double k = penalty_factor * (master.rigid ? own_stiffness(slave, s, nn) :
+                                                          master.modulus[chosen] * tributary_area(slave, s, nn));
         // The stable step: a node within the thickness of its partner's
         // element may be in contact by the next step, so its spring counts
         // (see stable_frequency_squared()): the spring k (n . (u_s - sum_j

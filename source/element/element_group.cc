@@ -278,10 +278,24 @@ namespace anvil::Element
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
     shape_factor.assign(n, 1.);
+    mass_factor.assign(n, 1.);
     if (bulk_viscosity())
       bulk_pressure.assign(n * n_qp, 0.);
     if (material.erodes())
       alive.assign(n, 1);
+  }
+
+
+  void ElementGroup::set_nodal_mass_ratio(const double *ratio)
+  {
+    for (unsigned int e = 0; e < mass_factor.size(); ++e)
+      {
+        double r = 1.;
+        for (unsigned int n = 0; n < 8; ++n)
+          r = std::min(r, ratio[nodes[8 * e + n]]);
+        mass_factor[e] = r;
+      }
+    refresh_shape = true;
   }
 
 
@@ -849,7 +863,7 @@ namespace anvil::Element
         if (refresh_shape)
           {
             const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
-            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.);
+            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
           }
         min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
         result.viscous_energy_increment += energy_weight[e] * e_visc;
@@ -1183,7 +1197,8 @@ namespace anvil::Element
               const double V = 8. * detn[l];
               shape[l]       = std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
                                           return xe[n][a][l];
-                                        }) * g2[l] / 4.);
+                                        }) * g2[l] / 4.) *
+                         mass_factor[el[l]];
               if (l < n_valid)
                 shape_factor[el[l]] = shape[l];
             }

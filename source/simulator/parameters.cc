@@ -610,7 +610,8 @@ namespace anvil
                     << contact_pairs[i].penalty_factor
                     << " > 0.4 (seed section 4.3): the penalty springs need a "
                        "smaller time step than the elements; the step is reduced "
-                       "to 2 / sqrt(omega_e^2 + omega_c^2) (reduction printed at the start)."
+                       "to 2 / sqrt(omega_e^2 + omega_c^2) while they act (the run's last lines "
+                       "and summary.csv say how many steps they set)."
                     << std::endl;
           }
         rebar_layouts.resize(rebar_names.size());

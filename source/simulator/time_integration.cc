@@ -898,6 +898,10 @@ namespace anvil
           << " s, energy balance error " << balance_error;
     if (n_eroded > 0)
       pcout << ", " << n_eroded << " elements eroded (" << output_directory << "/erosion.csv)";
+    if (summary.contact_limited_steps > 0)
+      pcout << "\n  contact penalty springs set the size of " << summary.contact_limited_steps
+            << " steps; the elements alone would have needed "
+            << static_cast<unsigned long>(std::lround(summary.element_steps)) << " steps";
     pcout << "\n"
           << "  results: " << output_directory << "/energy.csv, "
           << output_directory << "/solution.pvd" << std::endl;

@@ -8,15 +8,17 @@ Mass: M = 0.4 kg at V0 = 1 m/s, a rigid block that moves freely along x
 end returns (t < 2L/c = 0.02 s), 1D theory gives
   F(t) = Z V0 exp(-Z t / M),   V(t) = V0 exp(-Z t / M),
 so V(M/Z = 0.01 s) = V0 / e and the peak force is Z V0 = 40 N, for a rigid
-contact. The penalty contact puts a spring k in series: 9 bar-end nodes,
-each k_n = f K A^2 / V of its elements (Eq. (59), f = 0.1, the slave side's
-stiffness against a rigid surface), k = 3.0e4 N/m, which delays and lowers
-the peak (Z/k = 1.3 ms). The closed form of that linear system (mass M,
+contact. The penalty contact puts a spring k in series: the bar end's 9
+nodes, each f (K A / V) over its tributary area (Eq. (59) per unit area, f =
+0.1, the slave side's stiffness against a rigid surface), together
+k = f K A_end / h = 1.33e4 N/m for the 20 x 20 mm end and its 10 mm
+elements, the 4 end faces' f K A^2 / V summed; it delays and lowers the
+peak (Z/k = 3.0 ms). The closed form of that linear system (mass M,
 spring k, dashpot Z in series) is integrated here with RK4 at 1e-6 s:
   M dV/dt = -F,  dF/dt = k (V - F/Z).
-Tolerances: 3 % of V0 on the mass velocity over 0 < t < 2L/c, 5 % on the
-peak force (the 3D bar end is loaded through 9 nodes, not by a uniform
-traction); total momentum (bar + mass) conserved to 1e-12 of M V0 (contact
+Tolerances: 1 % of V0 on the mass velocity over 0 < t < 2L/c, 2 % on the
+peak force (measured: 0.08 % and 0.12 %; with a penalty per node that
+ignored the tributary area, the 9 end nodes made k 9/4 too stiff); total momentum (bar + mass) conserved to 1e-12 of M V0 (contact
 forces are equal and opposite); energy balance below 1 %. The rigid-contact
 values are printed for comparison.
 """
@@ -86,7 +88,7 @@ rigid = read_csv(os.path.join(d, "rigid_mass.csv"))
 momentum = read_csv(os.path.join(d, "momentum.csv"))
 energy = read_csv(os.path.join(d, "energy.csv"))
 M, V0, Z = 0.4, 1.0, 1000 * 100 * 0.02 * 0.02
-k = 9 * 0.1 * (1e7 / 3) * (0.01 * 0.01) ** 2 / 0.01 ** 3
+k = 0.1 * (1e7 / 3) * (0.02 * 0.02) / 0.01
 
 
 def series(t_end, h=1e-6):
@@ -111,9 +113,9 @@ worst = 0.0
 for ti, vi in zip(t, rigid["vx"]):
     j = min(int(round(ti / 1e-6)), len(ref) - 1)
     worst = max(worst, abs(vi - ref[j][1]) / V0)
-c.check_below("largest |V_mass - V_closed form| / V0 over t < 2L/c", worst, 0.03)
+c.check_below("largest |V_mass - V_closed form| / V0 over t < 2L/c", worst, 0.01)
 peak = max(-f for f in rigid["fx"])
-c.check("peak contact force [N]", peak, max(r[2] for r in ref), 0.05, relative=True)
+c.check("peak contact force [N]", peak, max(r[2] for r in ref), 0.02, relative=True)
 i = min(range(len(t)), key=lambda q: abs(t[q] - M / Z))
 print(f"  rigid contact (no spring): V(M/Z) = {V0 / math.e:.4f} m/s against {rigid['vx'][i]:.4f}; "
       f"peak force {Z * V0:.1f} N against {peak:.2f} N")

@@ -54,6 +54,9 @@ namespace anvil::Contact
         m^2, m^2, Pa/m, m. */
     std::vector<double> area;
     std::vector<double> area_vector, node_area, node_modulus, node_depth;
+    /** Per segment: its area vector A n and its pressure modulus K A / V
+        (current A). Units: m^2, Pa/m. */
+    std::vector<double> segment_area_vector, modulus;
   };
 
   /** The placement of a rigid body's analytic contact shape. */
