@@ -234,3 +234,17 @@ def lumped_masses(nodes, n, rho):
             for v in range(8):
                 m[ids[v]] += rho * N[v] * abs(det)
     return m
+
+
+def plane_condition(name, body, axis, at=0.0, components=None):
+    """Scene text of a boundary condition 'name' on the nodes of 'body' in
+    the plane x_axis = at (axis 'x', 'y' or 'z', a box 1e-7 thick): by
+    default the symmetry condition u_axis = 0; 'components' fixes others."""
+    i = "xyz".index(axis)
+    lower = [-1e3] * 3
+    upper = [1e3] * 3
+    lower[i], upper[i] = at - 1e-7, at + 1e-7
+    return (f"subsection Boundary condition {name}\n  set Body = {body}\n  set Selection = box\n"
+            f"  set Box lower corner = {', '.join(f'{v:.9g}' for v in lower)}\n"
+            f"  set Box upper corner = {', '.join(f'{v:.9g}' for v in upper)}\n"
+            f"  set Components = {components or axis}\nend\n")

@@ -30,7 +30,8 @@ worst pairing); np = 2 equals np = 1 (contact history, 1e-8).
 import math
 import os
 from anvil_test import (Checker, arguments, graded, lumped_masses, max_relative_difference,
-                        read_csv, run_anvil, write_ball, write_hexahedra, write_scene)
+                        plane_condition, read_csv, run_anvil, write_ball, write_hexahedra,
+                        write_scene)
 
 args = arguments()
 c = Checker("graded sphere on a graded block: Hertz, and the steps the springs need")
@@ -102,6 +103,11 @@ w2_old = max(4 * stiffest_segment(block, block_faces) / min(m_ball_nodes),
              4 * stiffest_segment(ball, ball_faces) / min(m_block_nodes))
 
 
+conditions = (plane_condition("sym_x", "ball", "x") + plane_condition("sym_y", "ball", "y") +
+              plane_condition("sym_x_block", "block", "x") + plane_condition("sym_y_block", "block", "y") +
+              plane_condition("base", "block", "z", at=-R - gap - size, components="x, y, z"))
+
+
 def run(np):
     name = f"sphere_block_np{np}"
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
@@ -143,42 +149,7 @@ subsection Body ball
   end
   set Initial velocity = 0, 0, {-v}
 end
-subsection Boundary condition sym_x
-  set Body = ball
-  set Selection = box
-  set Box lower corner = -1e-7, -1, -1
-  set Box upper corner = 1e-7, 1, 1
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = ball
-  set Selection = box
-  set Box lower corner = -1, -1e-7, -1
-  set Box upper corner = 1, 1e-7, 1
-  set Components = y
-end
-subsection Boundary condition sym_x_block
-  set Body = block
-  set Selection = box
-  set Box lower corner = -1e-7, -1, -1
-  set Box upper corner = 1e-7, 1, 1
-  set Components = x
-end
-subsection Boundary condition sym_y_block
-  set Body = block
-  set Selection = box
-  set Box lower corner = -1, -1e-7, -1
-  set Box upper corner = 1, 1e-7, 1
-  set Components = y
-end
-subsection Boundary condition base
-  set Body = block
-  set Selection = box
-  set Box lower corner = -1, -1, {-R - gap - size - 1e-7:.9g}
-  set Box upper corner = 1, 1, {-R - gap - size + 1e-7:.9g}
-  set Components = x, y, z
-end
-subsection Contact pair hit
+{conditions}subsection Contact pair hit
   set First body = block
   set Second body = ball
   set Penalty scale factor = {f}

@@ -17,7 +17,8 @@ elements), and the errors must be smaller there than at 8 x 8 x 16.
 """
 import math
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_ball, write_scene
+from anvil_test import (Checker, arguments, plane_condition, read_csv, run_anvil, write_ball,
+                        write_scene)
 
 args = arguments()
 c = Checker("Hertz: elastic sphere on a rigid plane")
@@ -71,21 +72,7 @@ subsection Body ball
   end
   set Initial velocity = 0, 0, {-v}
 end
-subsection Boundary condition sym_x
-  set Body = ball
-  set Selection = box
-  set Box lower corner = -1e-7, -1, -1
-  set Box upper corner = 1e-7, 1, 1
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = ball
-  set Selection = box
-  set Box lower corner = -1, -1e-7, -1
-  set Box upper corner = 1, 1e-7, 1
-  set Components = y
-end
-subsection Contact pair hit
+{plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
   set First body = floor
   set Second body = ball
   set Penalty scale factor = 1.0

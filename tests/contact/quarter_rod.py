@@ -21,8 +21,8 @@ Checks (both models with the scene's penalty factor 0.1, and at 1.0):
   difference below 1e-8).
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+from anvil_test import (Checker, arguments, max_relative_difference, plane_condition, read_csv,
+                        run_anvil, write_scene)
 
 args = arguments()
 c = Checker("quarter and full rod models: equal contact force and duration")
@@ -46,17 +46,8 @@ subsection Body rod_b
 end
 """
 for body in ("a", "b"):
-    for comp, lower, upper in (("y", "-20, -1e-6, -1", "20, 1e-6, 1"),
-                               ("z", "-20, -1, -1e-6", "20, 1, 1e-6")):
-        quarter_geometry += f"""
-subsection Boundary condition sym_{comp}_{body}
-  set Body = rod_{body}
-  set Selection = box
-  set Box lower corner = {lower}
-  set Box upper corner = {upper}
-  set Components = {comp}
-end
-"""
+    for axis in ("y", "z"):
+        quarter_geometry += plane_condition(f"sym_{axis}_{body}", f"rod_{body}", axis)
 
 
 def run(name, geometry, factor, np=1):
