@@ -14,22 +14,27 @@ What the linear penalty of seed Eqs. (58)-(59) allows: under a contact
 pressure p a face sinks l / h = p / (f K) of its element's thickness h,
 whatever the stiffness is computed from. At the onset the face meets the
 wall at 250 m/s, and the pressure of that elastic impact, up to rho c v =
-9.8 GPa = 0.57 f K at f = 0.1, presses it about a third of an element deep
-for the first ten microseconds (the wave crossing the bar's radius and back
-relieves it). During the plastic flow that shapes the bar the pressure is
-a few GPa and the face stays within a tenth of an element. The onset is
-what the penalty factor still changes: the foot radius at f = 0.1 is about
-2.6 % wider than at f = 1 (half the speed: 0.3 %; the final length: 0.1 %).
-A penalty that reached the 10 % bound at the onset too would need f of
-about 0.6 there (doc/theory.md, "Penalty contact").
+9.8 GPa = 0.57 f K at f = 0.1, presses it a third of an element deep; the
+face then rebounds off its springs (no node in contact at 6 us) and strikes
+again. From about 17 us on, through the plastic flow that shapes the bar,
+the face stays within a tenth of an element. A penalty that kept the 10 %
+bound through the onset too would need f of about 0.6 there
+(doc/theory.md, "Penalty contact").
+
+The stiffness follows the spreading face as a potential, 1/2 kappa(x) l^2
+(add_stiffness_gradient): without the gradient term the springs, loaded
+while the face was small and unloaded once it had spread, gave back 22.6 J
+more than they took (2.6 % of the impact energy) and the foot came out
+2.6 % wider than at f = 1; now the contact energy returns to 0.03 J.
 
 Checks:
-- final length at f = 0.1 within 1 % of the run at f = 1; at 125 m/s also
-  the foot radius within 1 %; at 250 m/s the foot radius within 3.5 % (the
-  onset above, printed);
-- the deepest penetration at f = 0.1 once the onset is over (t >= 10 us)
-  below 10 % of the smallest contact element size (the axial element
-  length, 1 mm); the onset's printed;
+- final length and foot radius at f = 0.1 within 1 % of the run at f = 1,
+  at 250 and at 125 m/s;
+- the deepest penetration at f = 0.1 once the onset is over (t >= 20 us,
+  the last two thirds of the contact) below 10 % of the smallest contact
+  element size (the axial element length, 1 mm); the onset's printed;
+- the contact energy at the end (no node in contact) below 0.1 % of the
+  impact energy: the springs give back what they took;
 - f = 1 costs few steps: the springs only bound the step while they act
   (steps printed; at most 20 % more than at f = 0.1);
 - energy balance below 1 % in every run.
@@ -67,8 +72,9 @@ end
     steps = dict(zip(summary["quantity"], summary["value"]))["steps"]
     result = (bodies["xmax"][i] - bodies["xmin"][i], 0.5 * (bodies["ymax"][i] - bodies["ymin"][i]),
               read_csv(os.path.join(d, "contact_impact.csv")),
-              max(read_csv(os.path.join(d, "energy.csv"))["balance_error"]), steps)
-    length, radius, contact, balance, steps = result
+              max(read_csv(os.path.join(d, "energy.csv"))["balance_error"]), steps,
+              read_csv(os.path.join(d, "energy.csv")))
+    length, radius, contact, balance, steps, energy = result
     print(f"  f = {factor}, {speed} m/s: final length {1000 * length:.3f} mm, foot radius "
           f"{1000 * radius:.3f} mm, deepest penetration {1000 * max(contact['max_penetration']):.4f} mm, "
           f"balance {balance:.2e}, {steps:.0f} steps")
@@ -78,7 +84,7 @@ end
 
 soft, stiff = run(0.1), run(1.0)
 c.check("250 m/s: final length at f = 0.1 / at f = 1 [m]", soft[0], stiff[0], 0.01, relative=True)
-c.check("250 m/s: foot radius at f = 0.1 / at f = 1 [m]", soft[1], stiff[1], 0.035, relative=True)
+c.check("250 m/s: foot radius at f = 0.1 / at f = 1 [m]", soft[1], stiff[1], 0.01, relative=True)
 slow_soft, slow_stiff = run(0.1, 125), run(1.0, 125)
 c.check("125 m/s: final length at f = 0.1 / at f = 1 [m]", slow_soft[0], slow_stiff[0], 0.01,
         relative=True)
@@ -86,13 +92,18 @@ c.check("125 m/s: foot radius at f = 0.1 / at f = 1 [m]", slow_soft[1], slow_sti
         relative=True)
 contact = soft[2]
 onset = [(t, l, r) for t, l, r in zip(contact["time"], contact["max_penetration"],
-                                      contact["max_penetration_ratio"]) if t < 1e-5]
+                                      contact["max_penetration_ratio"]) if t < 2e-5]
 flow = [(t, l, r) for t, l, r in zip(contact["time"], contact["max_penetration"],
-                                     contact["max_penetration_ratio"]) if t >= 1e-5]
-print(f"  f = 0.1, 250 m/s: deepest penetration in the first 10 us {1000 * max(x[1] for x in onset):.4f} mm "
+                                     contact["max_penetration_ratio"]) if t >= 2e-5]
+print(f"  f = 0.1, 250 m/s: deepest penetration in the first 20 us {1000 * max(x[1] for x in onset):.4f} mm "
       f"({max(x[2] for x in onset):.2f} of the current element thickness), after "
       f"{1000 * max(x[1] for x in flow):.4f} mm ({max(x[2] for x in flow):.2f})")
-c.check_below("f = 0.1, t >= 10 us: deepest penetration / smallest contact element size (1 mm)",
+c.check_below("f = 0.1, t >= 20 us: deepest penetration / smallest contact element size (1 mm)",
               max(x[1] for x in flow) / element_length, 0.10)
 c.check_below("steps at f = 1 / steps at f = 0.1", stiff[4] / soft[4], 1.2)
+energy = soft[5]
+print(f"  f = 0.1, 250 m/s: contact energy at the end {energy['contact'][-1]:.4f} J, largest "
+      f"{max(energy['contact']):.2f} J, impact energy {energy['total'][0]:.1f} J")
+c.check_below("f = 0.1, 250 m/s: |contact energy at the end| / impact energy",
+              abs(energy["contact"][-1]) / energy["total"][0], 1e-3)
 c.finish()

@@ -220,7 +220,19 @@ namespace anvil::Contact
     /** Book the work on the penalty springs of pass @p s (the slave
         surface) from last step's and this step's spring forces and
         penetrations. */
-    void book_spring_work(unsigned int s);
+    void book_spring_work(unsigned int s, const std::vector<double> &x);
+
+    /** Add -1/2 l^2 grad kappa of slave node @p i of surface @p
+        slave_index (pressed along the normal (nx, ny, nz) against a rigid
+        surface, penetration l) to @p f and to geometric_force. */
+    void add_stiffness_gradient(unsigned int               slave_index,
+                                unsigned int               i,
+                                double                     nx,
+                                double                     ny,
+                                double                     nz,
+                                double                     l,
+                                const std::vector<double> &x,
+                                std::vector<double>       &f);
 
     std::vector<unsigned long> dofs;
     std::vector<bool>          on_first;
@@ -235,6 +247,10 @@ namespace anvil::Contact
     std::vector<int>    partner[2];
     std::vector<double> spring_force[2], spring_depth[2];
     std::vector<double> old_spring_force, old_spring_depth;
+    /** Per pass, the forces -1/2 l^2 grad kappa of this and the last step
+        (3 per pair node), and the positions of the last evaluation: their
+        work is part of the spring work. */
+    std::vector<double> geometric_force[2], old_geometric_force, previous_position;
     /** Work done on the penalty springs so far. Units: J. */
     double spring_work = 0;
     std::vector<double> node_mass;
