@@ -239,7 +239,7 @@ namespace anvil::Contact
                       "slave node's own. Under a pressure p a face sinks p / "
                       "(f K) of its element's thickness (doc/theory.md). The "
                       "springs in contact lower the time step while they act "
-                      "(with f = 1, for example, by about 7 % on a bar against "
+                      "(with f = 1, for example, by about 13 % on a bar against "
                       "a rigid wall, a third between two deformable bodies). "
                       "Units: none.");
     prm.declare_entry("Static friction coefficient",
