@@ -363,6 +363,19 @@ namespace anvil::Contact
             surf.element.push_back(segs[k].element);
             surf.active.push_back(true);
           }
+        // The thickest element's reference thickness V / A.
+        surf.max_reference_depth = 0;
+        for (const auto &[n, k] : order)
+          {
+            const auto  &X = segs[k].reference_position;
+            const double d1[3] = {X[6] - X[0], X[7] - X[1], X[8] - X[2]};
+            const double d2[3] = {X[9] - X[3], X[10] - X[4], X[11] - X[5]};
+            const double c[3]  = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                                  d1[0] * d2[1] - d1[1] * d2[0]};
+            const double A     = 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            if (A > 0)
+              surf.max_reference_depth = std::max(surf.max_reference_depth, segs[k].volume / A);
+          }
         surf.same_element.assign(surf.segments.size(), {});
         for (const auto &[e, list] : element_segments)
           for (const unsigned int k : list)
@@ -407,52 +420,72 @@ namespace anvil::Contact
   // node of a regular mesh has k = f K A^2 / V as in Eq. (59), a node on an
   // edge or a symmetry plane half of it, and a quarter model carries a
   // quarter of the full model's force.
-  void PenaltyContact::update_geometry(const unsigned int s, const std::vector<double> &x)
+  //
+  // Against an analytic shape only the nodes within reach of it need this
+  // (@p near; the column struck by a hammer has a few hundred of its
+  // thousands of surface nodes there): their segments and their sums are
+  // refreshed, nothing else.
+  void PenaltyContact::update_geometry(const unsigned int               s,
+                                       const std::vector<double>       &x,
+                                       const std::vector<unsigned int> *near)
   {
     Surface &surf = surface[s];
     auto     pos  = [&](const unsigned int i) -> Vec {
       return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     };
-    for (const unsigned int i : surf.nodes)
-      {
-        surf.area_vector[3 * i] = surf.area_vector[3 * i + 1] = surf.area_vector[3 * i + 2] = 0;
-        surf.node_area[i] = surf.node_modulus[i] = surf.node_depth[i] = 0;
-      }
-    for (unsigned int k = 0; k < surf.segments.size(); ++k)
-      {
-        if (!surf.active[k])
-          continue;
-        const auto  &n = surf.segments[k];
-        const Vec    a = 0.5 * cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
-        const double A = norm(a);
-        surf.area[k]   = A;
-        surf.segment_area_vector[3 * k]     = a.x;
-        surf.segment_area_vector[3 * k + 1] = a.y;
-        surf.segment_area_vector[3 * k + 2] = a.z;
-        const double modulus = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
-        surf.modulus[k]      = modulus;
-        const double depth   = A > 0 ? surf.volume[k] / A : 0.;
-        for (unsigned int j = 0; j < 4; ++j)
+    auto segment = [&](const unsigned int k) {
+      const auto  &n = surf.segments[k];
+      const Vec    a = 0.5 * cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
+      const double A = norm(a);
+      surf.area[k]                        = A;
+      surf.segment_area_vector[3 * k]     = a.x;
+      surf.segment_area_vector[3 * k + 1] = a.y;
+      surf.segment_area_vector[3 * k + 2] = a.z;
+      surf.modulus[k]                     = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
+    };
+    // The sums over the active segments around node i.
+    auto node = [&](const unsigned int i) {
+      double       av[3] = {0, 0, 0}, area = 0, modulus = 0, depth = 0;
+      unsigned int count = 0;
+      for (const unsigned int k : surf.node_segments[i])
+        if (surf.active[k])
           {
-            surf.area_vector[3 * n[j]] += 0.25 * a.x;
-            surf.area_vector[3 * n[j] + 1] += 0.25 * a.y;
-            surf.area_vector[3 * n[j] + 2] += 0.25 * a.z;
-            surf.node_area[n[j]] += 0.25 * A;
-            surf.node_modulus[n[j]] += modulus;
-            surf.node_depth[n[j]] += depth;
+            for (unsigned int d = 0; d < 3; ++d)
+              av[d] += 0.25 * surf.segment_area_vector[3 * k + d];
+            area += 0.25 * surf.area[k];
+            modulus += surf.modulus[k];
+            depth += surf.area[k] > 0 ? surf.volume[k] / surf.area[k] : 0.;
+            ++count;
           }
-      }
-    for (const unsigned int i : surf.nodes)
+      for (unsigned int d = 0; d < 3; ++d)
+        surf.area_vector[3 * i + d] = av[d];
+      surf.node_area[i]    = area;
+      surf.node_modulus[i] = count > 0 ? modulus / count : 0.;
+      surf.node_depth[i]   = count > 0 ? depth / count : 0.;
+    };
+    if (near == nullptr)
       {
-        unsigned int count = 0;
-        for (const unsigned int k : surf.node_segments[i])
-          count += surf.active[k] ? 1 : 0;
-        if (count > 0)
-          {
-            surf.node_modulus[i] /= count;
-            surf.node_depth[i] /= count;
-          }
+        for (unsigned int k = 0; k < surf.segments.size(); ++k)
+          if (surf.active[k])
+            segment(k);
+        for (const unsigned int i : surf.nodes)
+          node(i);
+        return;
       }
+    surf.seen.resize(surf.segments.size(), 0);
+    surf.touched.clear();
+    for (const unsigned int i : *near)
+      for (const unsigned int k : surf.node_segments[i])
+        if (surf.active[k] && !surf.seen[k])
+          {
+            surf.seen[k] = 1;
+            surf.touched.push_back(k);
+            segment(k);
+          }
+    for (const unsigned int i : *near)
+      node(i);
+    for (const unsigned int k : surf.touched)
+      surf.seen[k] = 0;
   }
 
 
@@ -493,10 +526,8 @@ namespace anvil::Contact
   {
     ContactResult result;
     spring_load.assign(dofs.size(), 0.);
-    for (unsigned int s = 0; s < 2; ++s)
-      if (!has_analytic(s))
-        update_geometry(s, x);
-    // A rigid body's analytic shape: the other body's nodes against it.
+    // A rigid body's analytic shape: the other body's nodes against it
+    // (which refreshes the geometry near the shape).
     if (has_analytic(0) || has_analytic(1))
       {
         const unsigned int a = has_analytic(0) ? 0 : 1;
@@ -504,6 +535,8 @@ namespace anvil::Contact
       }
     else
       {
+        for (unsigned int s = 0; s < 2; ++s)
+          update_geometry(s, x);
         for (unsigned int s = 0; s < 2; ++s)
           if (!search[s])
             {
@@ -648,14 +681,31 @@ namespace anvil::Contact
     start_pass(spring_force[slave_index], old_spring_force);
     start_pass(spring_depth[slave_index], old_spring_depth);
     start_pass(geometric_force[slave_index], old_geometric_force);
+    // The nodes within twice the thickest element's reference thickness of
+    // the shape; the geometry of those only.
+    near_nodes.clear();
+    near_gaps.clear();
     for (const unsigned int s : slave.nodes)
       {
+        const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
+        dealii::Tensor<1, 3>   normal;
+        const double l = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
+        if (l < 2. * slave.max_reference_depth)
+          {
+            near_nodes.push_back(s);
+            near_gaps.push_back({{l, normal[0], normal[1], normal[2]}});
+          }
+      }
+    update_geometry(slave_index, x, &near_nodes);
+    for (unsigned int c = 0; c < near_nodes.size(); ++c)
+      {
+        const unsigned int s = near_nodes[c];
         if (!(slave.node_area[s] > 0)) // every segment around it eroded
           continue;
         const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
-        dealii::Tensor<1, 3>   normal;
-        const double l     = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
-        const double depth = slave.node_depth[s];
+        const dealii::Tensor<1, 3> normal({near_gaps[c][1], near_gaps[c][2], near_gaps[c][3]});
+        const double               l     = near_gaps[c][0];
+        const double               depth = slave.node_depth[s];
         if (!(l < depth) || -l > depth)
           continue;
         const Vec    nn = {normal[0], normal[1], normal[2]};

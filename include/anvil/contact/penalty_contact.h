@@ -57,6 +57,12 @@ namespace anvil::Contact
     /** Per segment: its area vector A n and its pressure modulus K A / V
         (current A). Units: m^2, Pa/m. */
     std::vector<double> segment_area_vector, modulus;
+    /** The thickest element's reference thickness V / A (the reach of an
+        analytic shape's search). Units: m. */
+    double max_reference_depth = 0;
+    /** Work arrays of update_geometry() near an analytic shape. */
+    std::vector<char>         seen;
+    std::vector<unsigned int> touched;
   };
 
   /** The placement of a rigid body's analytic contact shape. */
@@ -215,7 +221,13 @@ namespace anvil::Contact
 
     /** The current areas, tributary area vectors, moduli and thicknesses
         of surface @p s at positions @p x. */
-    void update_geometry(unsigned int s, const std::vector<double> &x);
+    void update_geometry(unsigned int                     s,
+                         const std::vector<double>       &x,
+                         const std::vector<unsigned int> *near = nullptr);
+    /** Work arrays of the analytic pass: the slave nodes near the shape,
+        their gap and the shape's normal there. */
+    std::vector<unsigned int>          near_nodes;
+    std::vector<std::array<double, 4>> near_gaps;
 
     /** Book the work on the penalty springs of pass @p s (the slave
         surface) from last step's and this step's spring forces and
