@@ -51,6 +51,13 @@ namespace anvil::Contact
       return std::sqrt(dot(a, a));
     }
 
+    /** The area vector A n of a bilinear quadrilateral with cyclic
+        vertices x0..x3: half the cross product of its diagonals. */
+    inline Vec quad_area_vector(const Vec &x0, const Vec &x1, const Vec &x2, const Vec &x3)
+    {
+      return 0.5 * cross(x2 - x0, x3 - x1);
+    }
+
     // How far (in natural coordinates) a segment is extended beyond its
     // edges when no segment contains the projection of a slave node.
     constexpr double edge_tolerance = 0.1;
@@ -368,11 +375,8 @@ namespace anvil::Contact
         for (const auto &[n, k] : order)
           {
             const auto  &X = segs[k].reference_position;
-            const double d1[3] = {X[6] - X[0], X[7] - X[1], X[8] - X[2]};
-            const double d2[3] = {X[9] - X[3], X[10] - X[4], X[11] - X[5]};
-            const double c[3]  = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
-                                  d1[0] * d2[1] - d1[1] * d2[0]};
-            const double A     = 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            const double A = norm(quad_area_vector(
+              {X[0], X[1], X[2]}, {X[3], X[4], X[5]}, {X[6], X[7], X[8]}, {X[9], X[10], X[11]}));
             if (A > 0)
               surf.max_reference_depth = std::max(surf.max_reference_depth, segs[k].volume / A);
           }
@@ -435,7 +439,7 @@ namespace anvil::Contact
     };
     auto segment = [&](const unsigned int k) {
       const auto  &n = surf.segments[k];
-      const Vec    a = 0.5 * cross(pos(n[2]) - pos(n[0]), pos(n[3]) - pos(n[1]));
+      const Vec    a = quad_area_vector(pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3]));
       const double A = norm(a);
       surf.area[k]                        = A;
       surf.segment_area_vector[3 * k]     = a.x;
@@ -552,7 +556,10 @@ namespace anvil::Contact
         if (symmetric)
           pass(0, *search[1], x, v, dt, f, result);
       }
-    previous_position        = x;
+    // The gradient forces' work needs this step's positions next step;
+    // only springs against a rigid surface have them.
+    if (surface[0].rigid || surface[1].rigid || has_analytic(0) || has_analytic(1))
+      previous_position = x;
     result.energy            = spring_work;
     result.frequency_squared = stable_frequency_squared();
     return result;

@@ -108,6 +108,17 @@ conditions = (plane_condition("sym_x", "ball", "x") + plane_condition("sym_y", "
               plane_condition("base", "block", "z", at=-R - gap - size, components="x, y, z"))
 
 
+material = f"""  subsection Material
+    set Model = elastic
+    subsection elastic
+      set Density = {rho}
+      set Young's modulus = {E}
+      set Poisson's ratio = {nu}
+    end
+  end
+"""
+
+
 def run(np):
     name = f"sphere_block_np{np}"
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
@@ -125,29 +136,13 @@ subsection Body block
     set Source = file
     set File name = block.inp
   end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-end
+{material}end
 subsection Body ball
   subsection Mesh
     set Source = file
     set File name = ball.inp
   end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-  set Initial velocity = 0, 0, {-v}
+{material}  set Initial velocity = 0, 0, {-v}
 end
 {conditions}subsection Contact pair hit
   set First body = block
