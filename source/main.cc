@@ -29,6 +29,8 @@ namespace
     "       anvil --print-parameters --material-point   the same for driver files\n"
     "       anvil --print-parameters --study            the same for study files\n"
     "       anvil --help               this text\n"
+    "       anvil --version            Anvil's and deal.II's versions\n"
+    "The options may come in any order (anvil SCENE.prm --check).\n"
     "Exit status: 0 success, 2 bad input, 3 numerical failure, 4 results could not be written,\n"
     "             5 stopped by SIGTERM/SIGINT after writing a checkpoint, 1 other errors.\n";
 }
@@ -66,6 +68,12 @@ int main(int argc, char **argv)
         }
       return 0;
     }
+  if (args.size() == 1 && args[0] == "--version")
+    {
+      if (root)
+        std::cout << "anvil " ANVIL_VERSION " (deal.II " DEAL_II_PACKAGE_VERSION ")\n";
+      return 0;
+    }
   if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
     {
       if (root)
@@ -79,24 +87,29 @@ int main(int argc, char **argv)
       return 0;
     }
 
-  // [--check | --material-point] FILE [--set PATH=VALUE]...
+  // [--check | --material-point | ...] FILE [--set PATH=VALUE]..., the
+  // options in any order; at most one mode.
   bool                     check_only = false, driver = false, resume = false, cost = false;
-  std::string              resume_from;
+  std::string              resume_from, mode;
   std::string              file;
   std::vector<std::string> overrides;
   for (unsigned int i = 0; i < args.size(); ++i)
     {
       const std::string &a = args[i];
       std::string        error;
-      if (a == "--check" && i == 0)
+      const bool is_mode = a == "--check" || a == "--material-point" || a == "--resume" ||
+                           a == "--print-cost" || a == "--resume-from";
+      if (is_mode && !mode.empty())
+        error = "options '" + mode + "' and '" + a + "' cannot be combined";
+      else if (a == "--check")
         check_only = true;
-      else if (a == "--material-point" && i == 0)
+      else if (a == "--material-point")
         driver = true;
-      else if (a == "--resume" && i == 0)
+      else if (a == "--resume")
         resume = true;
-      else if (a == "--print-cost" && i == 0)
+      else if (a == "--print-cost")
         cost = true;
-      else if (a == "--resume-from" && i == 0)
+      else if (a == "--resume-from")
         {
           if (i + 1 == args.size())
             error = "option '--resume-from' needs the directory of a checkpoint";
@@ -116,10 +129,12 @@ int main(int argc, char **argv)
         file = a;
       else
         error = "expected one scene file, got '" + file + "' and '" + a + "'";
+      if (is_mode && error.empty())
+        mode = a;
       if (!error.empty())
         {
           if (root)
-            std::cerr << "anvil: error: " << error << "\n" << usage;
+            std::cerr << "anvil: error: " << anvil::printable_excerpt(error) << "\n" << usage;
           return 2;
         }
     }
@@ -162,13 +177,13 @@ int main(int argc, char **argv)
   catch (const anvil::InputError &e)
     {
       if (root)
-        std::cerr << "anvil: error: " << e.what() << std::endl;
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
       return 2;
     }
   catch (const anvil::NumericalFailure &e)
     {
       if (root)
-        std::cerr << "anvil: error: " << e.what() << std::endl;
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
       return 3;
     }
   catch (const anvil::Interrupted &e)
@@ -183,17 +198,17 @@ int main(int argc, char **argv)
       // collective and return with it; a frame or summary that failed on
       // one rank alone takes the job down.
       if (root)
-        std::cerr << "anvil: error: " << e.what() << std::endl;
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
       return 4;
     }
   catch (const dealii::ExceptionBase &e)
     {
-      std::cerr << "anvil: error: " << anvil::one_line_message(e) << std::endl;
+      std::cerr << "anvil: error: " << anvil::printable_excerpt(anvil::one_line_message(e)) << std::endl;
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
   catch (const std::exception &e)
     {
-      std::cerr << "anvil: error: " << e.what() << std::endl;
+      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
   return 0;

@@ -277,6 +277,17 @@ namespace anvil
     }
     prm.leave_subsection();
 
+    // About 4 kB per hexahedron: deal.II's cell, vertices and degrees of
+    // freedom, and Anvil's state.
+    const double fine = std::pow(8., refinements);
+    check_size("subsection 'Body " + name + "/Mesh'",
+               mesh_source == "box" ? "'Subdivisions' and 'Global refinements'" :
+                                      "'Axial subdivisions' and 'Global refinements'",
+               "elements",
+               (mesh_source == "box" ? double(subdivisions[0]) * subdivisions[1] * subdivisions[2] :
+                                       std::max(1., double(axial_subdivisions)) * 12.) *
+                 fine,
+               4096.);
     if (mesh_source == "box")
       for (unsigned int d = 0; d < 3; ++d)
         if (!(upper[d] > lower[d]))

@@ -8,6 +8,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -96,10 +97,19 @@ namespace anvil::Rebar
     host                 = prm.get("Host body");
     layout               = prm.get("Layout");
     axis                 = prm.get("Axis") == "x" ? 0 : prm.get("Axis") == "y" ? 1 : 2;
-    auto point           = [&](const std::string &entry) {
-      const auto p = Utilities::split_string_list(prm.get(entry));
-      return Point<3>(Utilities::string_to_double(p[0]), Utilities::string_to_double(p[1]),
-                      Utilities::string_to_double(p[2]));
+    // 'x, y, z' of an entry, or one line naming it.
+    auto point = [&](const std::string &entry) {
+      const std::string text = prm.get(entry);
+      const auto        p    = Utilities::split_string_list(text);
+      Point<3>          x;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          char *end = nullptr;
+          if (p.size() != 3 || p[d].empty() ||
+              (x[d] = std::strtod(p[d].c_str(), &end), *end != '\0') || !std::isfinite(x[d]))
+            throw InputError(at + "'" + entry + "' must be three numbers 'x, y, z', not '" + text + "'");
+        }
+      return x;
     };
     lower          = point("Member lower corner");
     upper          = point("Member upper corner");
@@ -111,12 +121,8 @@ namespace anvil::Rebar
     file_name      = prm.get("File name");
     if (!Utilities::trim(prm.get("Probe point")).empty())
       {
-        const auto p = Utilities::split_string_list(prm.get("Probe point"));
-        if (p.size() != 3)
-          throw InputError(at + "'Probe point' needs three numbers");
         has_probe = true;
-        probe     = Point<3>(Utilities::string_to_double(p[0]), Utilities::string_to_double(p[1]),
-                         Utilities::string_to_double(p[2]));
+        probe     = point("Probe point");
       }
     if (!file_name.empty() && file_name[0] != '/')
       file_name = scene_directory + "/" + file_name;
@@ -193,6 +199,8 @@ namespace anvil::Rebar
         const double c0 = lower[c] + inset, c1 = upper[c] - inset;
         if (b1 < b0 || c1 < c0)
           return lines;
+        check_size("subsection 'Rebar " + name + "'", "'Spacing' and the member's length", "stirrups",
+                   (upper[a] - lower[a]) / spacing, 1024.);
         for (double s = lower[a] + 0.5 * spacing; s < upper[a]; s += spacing)
           lines.push_back({make(s, b0, c0), make(s, b1, c0), make(s, b1, c1), make(s, b0, c1),
                            make(s, b0, c0)});

@@ -15,7 +15,10 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 
 #include <filesystem>
 #include <fstream>
@@ -141,6 +144,60 @@ namespace anvil
 
     // deal.II's messages name 'Line <N> of file <F>' of the expanded text:
     // name the real file and line instead.
+    /**
+     * Every number written in a 'set' line must be a normal double: strtod
+     * reports a value beyond the largest double (1e309) or below the
+     * smallest normal one (1e-308, a subnormal) as a range error, and
+     * deal.II would only find it later, when an entry is read, with a
+     * message that names neither file nor line. Throws an InputError
+     * naming the line, the entry and the number.
+     */
+    void check_number_ranges(const ExpandedScene &scene, const std::string &file)
+    {
+      std::istringstream in(scene.text);
+      std::string        line;
+      for (unsigned int n = 0; std::getline(in, line); ++n)
+        {
+          const auto first = line.find_first_not_of(" \t");
+          if (first == std::string::npos || line.compare(first, 4, "set ") != 0)
+            continue;
+          const auto eq = line.find('=', first);
+          if (eq == std::string::npos)
+            continue;
+          const std::string entry = line.substr(first + 4, eq - first - 4);
+          const char       *c     = line.c_str() + eq + 1;
+          while (*c != '\0' && *c != '#')
+            {
+              // A number starts with a digit, or a point before a digit,
+              // not preceded by a letter or digit (names like 'b2').
+              const bool starts = (std::isdigit(*c) || (*c == '.' && std::isdigit(c[1]))) &&
+                                  (c == line.c_str() + eq + 1 ||
+                                   !(std::isalnum(c[-1]) || c[-1] == '_' || c[-1] == '.'));
+              if (!starts)
+                {
+                  ++c;
+                  continue;
+                }
+              char *end = nullptr;
+              errno     = 0;
+              const double value = std::strtod(c, &end);
+              if (errno == ERANGE && (value != 0. || end - c > 1))
+                {
+                  const auto &[origin_file, origin_line] =
+                    scene.origin[std::min<std::size_t>(n, scene.origin.size() - 1)];
+                  std::string number(c, std::min<std::ptrdiff_t>(end - c, 40));
+                  std::string name = entry.substr(0, entry.find_last_not_of(" \t") + 1);
+                  throw InputError(file + ": line " + std::to_string(origin_line) + " of " + origin_file +
+                                   ": entry '" + name.substr(0, 80) + "': the number " + number +
+                                   (std::abs(value) > 1. ? " is larger than the largest double (1.8e308)" :
+                                                           " is below the smallest normal double (2.2e-308); write 0 "
+                                                           "or a number of sensible size"));
+                }
+              c = end;
+            }
+        }
+    }
+
     std::string locate(std::string msg, const ExpandedScene &scene, const std::string &file)
     {
       const std::string tag = "Line <";
@@ -430,6 +487,7 @@ namespace anvil
       expand(parameter_file, stack, expanded);
     }
     append_overrides(split_overrides(overrides), expanded);
+    check_number_ranges(expanded, parameter_file);
     auto parse = [&](dealii::ParameterHandler &prm, const bool skip) {
       try
         {
@@ -459,6 +517,17 @@ namespace anvil
     const auto pair_names  = names(lists.get("Contact pairs"));
     const auto probe_names = names(lists.get("Probes"));
     const auto rebar_names = names(lists.get("Rebars"));
+    // Every name becomes a subsection of some fifty entries: a list of
+    // hundreds of thousands would take minutes and gigabytes to declare.
+    constexpr std::size_t max_names = 1000;
+    for (const auto &[entry, list] : {std::pair{"Bodies", &body_names},
+                                      std::pair{"Boundary conditions", &bc_names},
+                                      std::pair{"Contact pairs", &pair_names},
+                                      std::pair{"Probes", &probe_names},
+                                      std::pair{"Rebars", &rebar_names}})
+      if (list->size() > max_names)
+        throw InputError(parameter_file + ": entry '" + entry + "' names " + std::to_string(list->size()) +
+                         " items; at most " + std::to_string(max_names) + " are allowed");
     for (const auto *list : {&body_names, &bc_names, &pair_names, &probe_names, &rebar_names})
       if (std::set<std::string>(list->begin(), list->end()).size() != list->size())
         throw InputError(parameter_file + ": a name appears twice in one of "

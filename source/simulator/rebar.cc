@@ -100,8 +100,11 @@ namespace anvil
             T.X.push_back(line[0]);
             for (unsigned int k = 0; k + 1 < line.size(); ++k)
               {
-                const double       len = line[k].distance(line[k + 1]);
-                const unsigned int n   = std::max(1., std::ceil(len / layout.element_length - 1e-9));
+                const double len = line[k].distance(line[k + 1]);
+                check_size(scene_file + ": subsection 'Rebar " + layout.name + "'",
+                           "'Element length' and a bar " + std::to_string(len) + " m long", "truss nodes",
+                           T.X.size() + len / layout.element_length, 512.);
+                const unsigned int n = std::max(1., std::ceil(len / layout.element_length - 1e-9));
                 for (unsigned int i = 1; i <= n; ++i)
                   {
                     T.X.push_back(line[k] + (double(i) / n) * (line[k + 1] - line[k]));

@@ -32,7 +32,19 @@ namespace anvil
     , fe(FE_Q<3>(1), 3)
     , dof_handler(triangulation)
   {
-    parse_parameters(parameter_file, overrides);
+    // Reading the scene only converts text: a deal.II exception here (a
+    // number that is not one, in an entry whose pattern lets any text
+    // through) is bad input, and arises on every rank alike.
+    try
+      {
+        parse_parameters(parameter_file, overrides);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError(parameter_file + ": " + one_line_message(e) +
+                         " (an entry that needs numbers holds something else; "
+                         "'anvil --print-parameters' shows what each entry takes)");
+      }
   }
 
 

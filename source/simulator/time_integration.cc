@@ -454,6 +454,20 @@ namespace anvil
     std::string    problem;
     if (inverted >= 0)
       problem = "element " + std::to_string(inverted) + " is inverted (Jacobian <= 0)";
+    // Springs so stiff that the step they allow is below the ratio of the
+    // elements' own: a penalty factor out of all proportion (or an
+    // overflow to infinity), which would otherwise take the step to zero
+    // at once and the run nowhere.
+    const double dt_stable = stable_time_step();
+    if (problem.empty() && min_dt_ratio > 0 && !(dt_stable >= min_dt_ratio * critical_dt))
+      {
+        std::ostringstream s;
+        s << "the contact springs allow a stable time step of " << dt_stable << " s, "
+          << dt_stable / critical_dt << " of the elements' " << critical_dt << " s (limit "
+          << min_dt_ratio
+          << ", 'Minimum time step ratio'): lower the contact pairs' 'Penalty scale factor'";
+        problem = s.str();
+      }
     if (first_dt == 0)
       first_dt = dt_next;
     if (problem.empty() && min_dt_ratio > 0 && dt_next < min_dt_ratio * first_dt)

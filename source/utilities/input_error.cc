@@ -1,5 +1,8 @@
 #include <anvil/utilities/input_error.h>
 
+#include <unistd.h>
+
+#include <cmath>
 #include <csignal>
 
 #include <sstream>
@@ -30,6 +33,45 @@ namespace anvil
   {
     return stop_signal != 0;
   }
+
+  void check_size(const std::string &where,
+                  const std::string &what,
+                  const std::string &items,
+                  const double       count,
+                  const double       bytes_each)
+  {
+    const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    const double limit  = std::min(2147483647., memory > 0 ? memory / bytes_each : 2147483647.);
+    if (std::isfinite(count) && count <= limit)
+      return;
+    std::ostringstream s;
+    s.precision(3);
+    s << where << ": " << what << " ask for " << count << ' ' << items << "; at most " << limit
+      << " fit (" << memory / double(1u << 30) << " GiB of memory, about " << bytes_each
+      << " bytes each, 32-bit indices)";
+    throw InputError(s.str());
+  }
+
+
+  std::string printable_excerpt(const std::string &message)
+  {
+    std::string out, word;
+    auto        flush = [&]() {
+      out += word.size() > 120 ? word.substr(0, 80) + "..." + word.substr(word.size() - 30) : word;
+      word.clear();
+    };
+    for (const char c : fold_whitespace(message))
+      if (c == ' ')
+        {
+          flush();
+          out += c;
+        }
+      else
+        word += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '?' : c;
+    flush();
+    return out;
+  }
+
 
   std::string fold_whitespace(const std::string &text)
   {

@@ -7,6 +7,7 @@ starting 'anvil: error:' that names the file and the offending entry, and
 for the inverted element the time, step, element and position.
 """
 import os
+import subprocess
 from anvil_test import Checker, arguments, run_anvil, write_scene
 
 args = arguments()
@@ -107,6 +108,47 @@ for name, value, words in (("max_dt_comma", "1,2", ["Maximum time step", "comma"
     print(f"    {name}: {lines[-1] if lines else ''}")
     c.check_true(f"{name}: exit 2 with one line naming the entry", code == 2 and len(lines) == 1 and
                  all(w in lines[0] for w in words))
+
+# Sizes and numbers out of reach: a subnormal or overflowing number in any
+# entry, a mesh or a bar too large for the machine, a list of names too
+# long to declare; each refused before anything is allocated.
+many = ", ".join(f"b{i}" for i in range(2000))
+for name, text, words in (
+        ("subnormal", block.format(mesh="", nu="0.3", extra="").replace("0.01", "1e-308"),
+         ["Density", "1e-308", "smallest normal"]),
+        ("overflow", block.format(mesh="", nu="0.3", extra="").replace("0.01", "1e400"),
+         ["Density", "1e400", "largest double"]),
+        ("huge_mesh", block.format(mesh="", nu="0.3", extra="").replace("Subdivisions = 2, 2, 2",
+                                                                        "Subdivisions = 2000000000, 2, 2"),
+         ["Subdivisions", "elements", "GiB"]),
+        ("many_names", block.format(mesh="", nu="0.3", extra="").replace("set Bodies = block",
+                                                                         "set Bodies = block, " + many),
+         ["Bodies", "2001", "at most 1000"])):
+    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=text)
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+    lines = [l for l in err.splitlines() if l.strip()]
+    print(f"    {name}: {lines[-1] if lines else ''}")
+    c.check_true(f"{name}: exit 2 with one line naming {words}", code == 2 and len(lines) == 1 and
+                 all(w in lines[0] for w in words))
+
+# A penalty factor out of all proportion stops at the first step instead of
+# taking the step to zero; the options may follow the scene file.
+rod = os.path.join(args.source_dir, "prm", "elastic_rod_impact", "elastic_rod_impact.prm")
+r = subprocess.run([args.anvil, rod, "--set", "Contact pair impact/Penalty scale factor=1e308",
+                    "--set", "Simulation/Output directory=" + os.path.join(args.work_dir, "output", "stiff")],
+                   cwd=args.work_dir, capture_output=True, text=True, timeout=120)
+lines = [l for l in r.stderr.splitlines() if l.strip()]
+print(f"    stiff penalty: {lines[-1] if lines else ''}")
+c.check_true("penalty factor 1e308: exit 3 at step 0 with one line naming the entry",
+             r.returncode == 3 and len(lines) == 1 and "step 0" in lines[0] and
+             "Penalty scale factor" in lines[0])
+r = subprocess.run([args.anvil, os.path.join(args.work_dir, "unknown_body.prm"), "--check"],
+                   cwd=args.work_dir, capture_output=True, text=True, timeout=120)
+code, err = r.returncode, r.stderr
+c.check_true("'anvil SCENE.prm --check' reads the options after the file", code == 2 and "blok" in err, err.strip())
+r = subprocess.run([args.anvil, "--version"], capture_output=True, text=True)
+c.check_true("--version prints one line", r.returncode == 0 and r.stdout.startswith("anvil ") and
+             "deal.II" in r.stdout, r.stdout + r.stderr)
 
 # Includes: a scene that includes itself through another file, and an
 # include that names no file; resolved relative to the including file, so

@@ -61,6 +61,23 @@ namespace anvil
    */
   std::string one_line_message(const dealii::ExceptionBase &e);
 
+  /**
+   * Before a scene allocates @p count @p items of about @p bytes_each
+   * bytes: an InputError naming @p where and the entries (@p what) if they
+   * would not fit in this machine's memory, or if @p count exceeds the
+   * 32-bit indices deal.II and Anvil use (or is not finite).
+   */
+  void check_size(const std::string &where, const std::string &what, const std::string &items,
+                  double count, double bytes_each);
+
+  /**
+   * A message fit to print on one line: bytes that are not printable
+   * become '?', and a run of more than 120 characters without a space (a
+   * value pasted whole into the message) keeps its first 80 and last 30
+   * characters around "...".
+   */
+  std::string printable_excerpt(const std::string &message);
+
   /** Fold whitespace runs (including newlines) of @p text to single spaces. */
   std::string fold_whitespace(const std::string &text);
 } // namespace anvil
