@@ -10,6 +10,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <csignal>
 #include <iostream>
 
@@ -53,7 +54,20 @@ int main(int argc, char **argv)
   // Past a file-size limit a write fails (and is reported) instead of the
   // signal killing the run.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A run takes SIGTERM and SIGINT as a request to checkpoint and stop,
+  // from its very start: one that arrives while MPI starts or the scene is
+  // set up is honoured at the first step (a study stops its runs whenever
+  // it is stopped itself). Other modes keep the default: they just end.
+  const bool running = std::none_of(args.begin(), args.end(), [](const std::string &a) {
+    return a == "--check" || a == "--print-cost" || a == "--help" || a == "-h" || a == "--version" ||
+           a == "--print-parameters" || a == "--material-point";
+  });
+  if (running)
+    anvil::install_stop_handler();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Open MPI's start installs handlers of its own: ours again.
+  if (running)
+    anvil::install_stop_handler();
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   if (args.size() == 2 && args[0] == "--print-parameters" && args[1] == "--material-point")
@@ -134,16 +148,17 @@ int main(int argc, char **argv)
       if (!error.empty())
         {
           if (root)
-            std::cerr << "anvil: error: " << anvil::printable_excerpt(error) << "\n" << usage;
+            std::cerr << "anvil: error: " << anvil::printable_excerpt(error)
+                      << " ('anvil --help' shows the usage)\n";
           return 2;
         }
     }
   if (file.empty() || (driver && !overrides.empty()))
     {
       if (root)
-        std::cerr << "anvil: error: " << (file.empty() ? "no scene file given" : "--set applies to scenes, not to --material-point")
-                  << "\n"
-                  << usage;
+        std::cerr << "anvil: error: "
+                  << (file.empty() ? "no scene file given" : "--set applies to scenes, not to --material-point")
+                  << " ('anvil --help' shows the usage)\n";
       return 2;
     }
 
@@ -169,10 +184,7 @@ int main(int argc, char **argv)
       else if (cost)
         simulator.print_cost();
       else
-        {
-          anvil::install_stop_handler();
-          simulator.run(resume, resume_from);
-        }
+        simulator.run(resume, resume_from);
     }
   catch (const anvil::InputError &e)
     {

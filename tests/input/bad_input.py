@@ -146,6 +146,12 @@ r = subprocess.run([args.anvil, os.path.join(args.work_dir, "unknown_body.prm"),
                    cwd=args.work_dir, capture_output=True, text=True, timeout=120)
 code, err = r.returncode, r.stderr
 c.check_true("'anvil SCENE.prm --check' reads the options after the file", code == 2 and "blok" in err, err.strip())
+for name, argv in (("unknown option", ["--frobnicate", "x.prm"]), ("no scene file", [])):
+    r = subprocess.run([args.anvil, *argv], cwd=args.work_dir, capture_output=True, text=True, timeout=60)
+    lines = [l for l in r.stderr.splitlines() if l.strip()]
+    print(f"    {name}: {lines[-1] if lines else ''}")
+    c.check_true(f"{name}: exit 2 with one line", r.returncode == 2 and len(lines) == 1 and
+                 lines[0].startswith("anvil: error:"), r.stderr)
 r = subprocess.run([args.anvil, "--version"], capture_output=True, text=True)
 c.check_true("--version prints one line", r.returncode == 0 and r.stdout.startswith("anvil ") and
              "deal.II" in r.stdout, r.stdout + r.stderr)

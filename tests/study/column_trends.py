@@ -24,16 +24,20 @@ studies = os.path.join(os.path.abspath(args.source_dir), "prm", "rc_column_impac
 # The mass study is stopped (SIGTERM) while its first runs are under way:
 # they write checkpoints, and the study started again resumes them (its
 # results then pass the same checks as an uninterrupted study's).
-# The signal goes 1 s after both first runs have started (not at a fixed
-# time: a run takes a few seconds, and faster code once let two of them
-# finish before a fixed 6 s).
+# The signal goes 1 s after both first runs have finished their setup (not
+# at a fixed time: a run takes a few seconds, and faster code once let two
+# of them finish before a fixed 6 s; nor when their logs appear: a run still
+# starting MPI under load then died without a checkpoint).
 shutil.rmtree(os.path.join(args.work_dir, "output", "hammer_mass_coarse"), ignore_errors=True)
 p = subprocess.Popen([args.anvil, "--study", os.path.join(studies, "hammer_mass_coarse.prm"), "--jobs", "2"],
                      cwd=args.work_dir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 deadline = time.time() + 300
-while time.time() < deadline and p.poll() is None and not all(
-        os.path.exists(os.path.join(args.work_dir, "output", "hammer_mass_coarse", f"run_0{i}", "run.log"))
-        for i in (1, 2)):
+def set_up(i):
+    log = os.path.join(args.work_dir, "output", "hammer_mass_coarse", f"run_0{i}", "run.log")
+    return os.path.exists(log) and "results in" in open(log, errors="replace").read()
+
+
+while time.time() < deadline and p.poll() is None and not all(set_up(i) for i in (1, 2)):
     time.sleep(0.05)
 time.sleep(1.0)
 p.send_signal(signal.SIGTERM)
