@@ -49,7 +49,6 @@ namespace anvil
                                            const std::string        &bc_name)
   {
     using dealii::Utilities::split_string_list;
-    using dealii::Utilities::string_to_double;
     name = bc_name;
     body = prm.get("Body");
     if (body.empty())
@@ -60,11 +59,7 @@ namespace anvil
     for (const auto &s : split_string_list(prm.get("Boundary ids")))
       boundary_ids.push_back(dealii::Utilities::string_to_int(s));
     auto vec = [&](const std::string &entry) {
-      const auto           p = split_string_list(prm.get(entry));
-      dealii::Tensor<1, 3> t;
-      for (unsigned int d = 0; d < 3; ++d)
-        t[d] = string_to_double(p[d]);
-      return t;
+      return three_numbers(prm.get(entry), entry, "subsection 'Boundary condition " + name + "'");
     };
     lower    = dealii::Point<3>(vec("Box lower corner"));
     upper    = dealii::Point<3>(vec("Box upper corner"));

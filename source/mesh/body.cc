@@ -9,22 +9,6 @@
 
 namespace anvil
 {
-  namespace
-  {
-    dealii::Tensor<1, 3> parse_vector(const std::string &text,
-                                      const std::string &entry)
-    {
-      const auto parts =
-        dealii::Utilities::split_string_list(text, ',');
-      if (parts.size() != 3)
-        throw InputError("entry '" + entry + "' = '" + text +
-                         "' must have three comma-separated components");
-      dealii::Tensor<1, 3> t;
-      for (unsigned int d = 0; d < 3; ++d)
-        t[d] = dealii::Utilities::string_to_double(parts[d]);
-      return t;
-    }
-  } // namespace
 
 
   void Body::declare_parameters(dealii::ParameterHandler &prm)
@@ -205,15 +189,9 @@ namespace anvil
         return false;
       if (lo.empty() || hi.empty())
         throw InputError(where + "give both 'Lower corner' and 'Upper corner', or neither");
-      try
-        {
-          lower = dealii::Point<3>(parse_vector(lo, "Lower corner"));
-          upper = dealii::Point<3>(parse_vector(hi, "Upper corner"));
-        }
-      catch (const InputError &e)
-        {
-          throw InputError(where + e.what());
-        }
+      const std::string subsection = where.substr(0, where.size() - 2); // without ": "
+      lower = dealii::Point<3>(three_numbers(lo, "Lower corner", subsection));
+      upper = dealii::Point<3>(three_numbers(hi, "Upper corner", subsection));
       for (unsigned int d = 0; d < 3; ++d)
         if (!(lower[d] < upper[d]))
           throw InputError(where + "'Lower corner' must lie below 'Upper corner' in every "
@@ -255,16 +233,15 @@ namespace anvil
     name = body_name;
     prm.enter_subsection("Mesh");
     {
-      mesh_source = prm.get("Source");
-      lower       = dealii::Point<3>(parse_vector(prm.get("Lower corner"),
-                                            "Lower corner"));
-      upper       = dealii::Point<3>(parse_vector(prm.get("Upper corner"),
-                                            "Upper corner"));
+      const std::string where = "subsection 'Body " + name + "/Mesh'";
+      mesh_source             = prm.get("Source");
+      lower       = dealii::Point<3>(three_numbers(prm.get("Lower corner"), "Lower corner", where));
+      upper       = dealii::Point<3>(three_numbers(prm.get("Upper corner"), "Upper corner", where));
       subdivisions.clear();
       for (const auto &s :
            dealii::Utilities::split_string_list(prm.get("Subdivisions")))
         subdivisions.push_back(dealii::Utilities::string_to_int(s));
-      grading            = parse_vector(prm.get("Grading"), "Grading");
+      grading            = three_numbers(prm.get("Grading"), "Grading", where);
       radius             = prm.get_double("Radius");
       length             = prm.get_double("Length");
       axial_subdivisions = prm.get_integer("Axial subdivisions");
@@ -272,7 +249,7 @@ namespace anvil
       if (!file_name.empty() && file_name[0] != '/')
         file_name = scene_directory + "/" + file_name;
       scale       = prm.get_double("Scale");
-      offset      = parse_vector(prm.get("Offset"), "Offset");
+      offset      = three_numbers(prm.get("Offset"), "Offset", where);
       refinements = prm.get_integer("Global refinements");
     }
     prm.leave_subsection();
@@ -338,7 +315,7 @@ namespace anvil
     bulk_quadratic = prm.get_double("Quadratic coefficient");
     prm.leave_subsection();
     initial_velocity =
-      parse_vector(prm.get("Initial velocity"), "Initial velocity");
+      three_numbers(prm.get("Initial velocity"), "Initial velocity", "subsection 'Body " + name + "'");
     prm.enter_subsection("Imperfection");
     {
       has_imperfection = parse_box(prm,

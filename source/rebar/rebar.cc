@@ -8,7 +8,6 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -97,19 +96,8 @@ namespace anvil::Rebar
     host                 = prm.get("Host body");
     layout               = prm.get("Layout");
     axis                 = prm.get("Axis") == "x" ? 0 : prm.get("Axis") == "y" ? 1 : 2;
-    // 'x, y, z' of an entry, or one line naming it.
     auto point = [&](const std::string &entry) {
-      const std::string text = prm.get(entry);
-      const auto        p    = Utilities::split_string_list(text);
-      Point<3>          x;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          char *end = nullptr;
-          if (p.size() != 3 || p[d].empty() ||
-              (x[d] = std::strtod(p[d].c_str(), &end), *end != '\0') || !std::isfinite(x[d]))
-            throw InputError(at + "'" + entry + "' must be three numbers 'x, y, z', not '" + text + "'");
-        }
-      return x;
+      return Point<3>(three_numbers(prm.get(entry), entry, "subsection 'Rebar " + name + "'"));
     };
     lower          = point("Member lower corner");
     upper          = point("Member upper corner");

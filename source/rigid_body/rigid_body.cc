@@ -16,18 +16,6 @@ namespace anvil::RigidBody
 
   namespace
   {
-    Tensor<1, 3> vector_from(const std::string &text, const std::string &entry, const std::string &where)
-    {
-      const auto parts = Utilities::split_string_list(text);
-      if (parts.size() != 3)
-        throw InputError("subsection '" + where + "': entry '" + entry +
-                         "' needs three numbers");
-      Tensor<1, 3> t;
-      for (unsigned int d = 0; d < 3; ++d)
-        t[d] = Utilities::string_to_double(parts[d]);
-      return t;
-    }
-
     /** exp([w]) for the rotation vector w (Rodrigues' formula). */
     Tensor<2, 3> rotation_matrix(const Tensor<1, 3> &w)
     {
@@ -147,8 +135,8 @@ namespace anvil::RigidBody
       for (unsigned int k = 0; k < 6; ++k)
         if (c == names[k])
           constrained[k] = true;
-    initial_angular_velocity = vector_from(prm.get("Initial angular velocity"),
-                                           "Initial angular velocity", where);
+    initial_angular_velocity = three_numbers(prm.get("Initial angular velocity"),
+                                           "Initial angular velocity", "subsection '" + where + "'");
     given_mass               = prm.get_double("Mass");
     given_inertia.clear();
     const std::string inertia = Utilities::trim(prm.get("Inertia"));
@@ -165,8 +153,8 @@ namespace anvil::RigidBody
                  s == "cylinder" ? Shape::Type::cylinder :
                  s == "plane"    ? Shape::Type::plane :
                                    Shape::Type::mesh;
-    shape.point     = Point<3>(vector_from(prm.get("Shape point"), "Shape point", where));
-    shape.direction = vector_from(prm.get("Shape direction"), "Shape direction", where);
+    shape.point     = Point<3>(three_numbers(prm.get("Shape point"), "Shape point", "subsection '" + where + "'"));
+    shape.direction = three_numbers(prm.get("Shape direction"), "Shape direction", "subsection '" + where + "'");
     shape.radius    = prm.get_double("Shape radius");
     prm.leave_subsection();
     if (shape.type != Shape::Type::mesh && shape.type != Shape::Type::sphere)

@@ -142,8 +142,6 @@ namespace anvil
       stack.pop_back();
     }
 
-    // deal.II's messages name 'Line <N> of file <F>' of the expanded text:
-    // name the real file and line instead.
     /**
      * Every number written in a 'set' line must be a normal double: strtod
      * reports a value beyond the largest double (1e309) or below the
@@ -198,6 +196,8 @@ namespace anvil
         }
     }
 
+    // deal.II's messages name 'Line <N> of file <F>' of the expanded text:
+    // name the real file and line instead.
     std::string locate(std::string msg, const ExpandedScene &scene, const std::string &file)
     {
       const std::string tag = "Line <";
@@ -525,14 +525,13 @@ namespace anvil
                                       std::pair{"Contact pairs", &pair_names},
                                       std::pair{"Probes", &probe_names},
                                       std::pair{"Rebars", &rebar_names}})
-      if (list->size() > max_names)
-        throw InputError(parameter_file + ": entry '" + entry + "' names " + std::to_string(list->size()) +
-                         " items; at most " + std::to_string(max_names) + " are allowed");
-    for (const auto *list : {&body_names, &bc_names, &pair_names, &probe_names, &rebar_names})
-      if (std::set<std::string>(list->begin(), list->end()).size() != list->size())
-        throw InputError(parameter_file + ": a name appears twice in one of "
-                                          "'Bodies', 'Boundary conditions', "
-                                          "'Contact pairs', 'Probes'");
+      {
+        if (list->size() > max_names)
+          throw InputError(parameter_file + ": entry '" + entry + "' names " + std::to_string(list->size()) +
+                           " items; at most " + std::to_string(max_names) + " are allowed");
+        if (std::set<std::string>(list->begin(), list->end()).size() != list->size())
+          throw InputError(parameter_file + ": a name appears twice in entry '" + entry + "'");
+      }
     if (body_names.empty())
       throw InputError(parameter_file + ": entry 'Bodies' names no body");
 

@@ -458,7 +458,7 @@ namespace anvil
     // elements' own: a penalty factor out of all proportion (or an
     // overflow to infinity), which would otherwise take the step to zero
     // at once and the run nowhere.
-    const double dt_stable = stable_time_step();
+    const double dt_stable = dt_next / time_step_factor;
     if (problem.empty() && min_dt_ratio > 0 && !(dt_stable >= min_dt_ratio * critical_dt))
       {
         std::ostringstream s;

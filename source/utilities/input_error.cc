@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <deal.II/base/utilities.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <csignal>
 
 #include <sstream>
@@ -33,6 +36,21 @@ namespace anvil
   {
     return stop_signal != 0;
   }
+
+  dealii::Tensor<1, 3> three_numbers(const std::string &text, const std::string &entry, const std::string &where)
+  {
+    const auto           parts = dealii::Utilities::split_string_list(text, ',');
+    dealii::Tensor<1, 3> x;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        char *end = nullptr;
+        if (parts.size() != 3 || parts[d].empty() ||
+            (x[d] = std::strtod(parts[d].c_str(), &end), *end != '\0') || !std::isfinite(x[d]))
+          throw InputError(where + ": entry '" + entry + "' must be three numbers 'x, y, z', not '" + text + "'");
+      }
+    return x;
+  }
+
 
   void check_size(const std::string &where,
                   const std::string &what,

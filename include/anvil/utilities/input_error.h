@@ -5,6 +5,7 @@
 #pragma once
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/tensor.h>
 
 #include <stdexcept>
 #include <string>
@@ -60,6 +61,14 @@ namespace anvil
    * decoration, folded onto one line.
    */
   std::string one_line_message(const dealii::ExceptionBase &e);
+
+  /**
+   * The three numbers of a comma-separated entry 'x, y, z' (@p text, read
+   * from entry @p entry of @p where): an InputError naming them if there
+   * are not three finite numbers.
+   */
+  dealii::Tensor<1, 3> three_numbers(const std::string &text, const std::string &entry,
+                                     const std::string &where);
 
   /**
    * Before a scene allocates @p count @p items of about @p bytes_each
