@@ -1,11 +1,16 @@
 #include <anvil/mesh/body.h>
+#include <anvil/mesh/mesh_file.h>
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <deal.II/grid/tria_description.h>
+
+#include <algorithm>
 #include <fstream>
+#include <set>
 
 namespace anvil
 {
@@ -26,7 +31,9 @@ namespace anvil
         "before the offset; boundary ids 0 hull, 1 at x-, 2 at x+), "
         "'sphere' (a ball of 'Radius' centred on the origin before the "
         "offset; boundary id 0), or "
-        "'file' (Gmsh .msh or ABAQUS .inp; boundary ids from the file).");
+        "'file' (ABAQUS .inp with parts, instances, sets and surfaces, or "
+        "ASCII Gmsh .msh 2.2/4.1 with physical groups; named surfaces "
+        "become boundary ids, see 'Region').");
       prm.declare_entry("Lower corner",
                         "0, 0, 0",
                         Patterns::List(Patterns::Double(), 3, 3),
@@ -65,6 +72,14 @@ namespace anvil
                         Patterns::Anything(),
                         "File: mesh file (.msh or .inp), relative to the "
                         "scene file's directory.");
+      prm.declare_entry("Region",
+                        "",
+                        Patterns::Anything(),
+                        "File: the cells this body takes, as a comma-separated "
+                        "list of names the file gives to groups of cells "
+                        "(ABAQUS: instances, parts, element sets, 'INSTANCE.SET'; "
+                        "Gmsh: physical volumes by name or number); matched "
+                        "without regard to case. Empty: every cell of the file.");
       prm.declare_entry("Scale",
                         "1",
                         Patterns::Double(0.),
@@ -248,6 +263,12 @@ namespace anvil
       file_name          = prm.get("File name");
       if (!file_name.empty() && file_name[0] != '/')
         file_name = scene_directory + "/" + file_name;
+      region.clear();
+      for (const auto &r : dealii::Utilities::split_string_list(prm.get("Region")))
+        if (!r.empty())
+          region.push_back(MeshFile::key(r));
+      if (mesh_source != "file" && !region.empty())
+        throw InputError(where + ": 'Region' needs 'Source = file'");
       scale       = prm.get_double("Scale");
       offset      = three_numbers(prm.get("Offset"), "Offset", where);
       refinements = prm.get_integer("Global refinements");
@@ -348,7 +369,7 @@ namespace anvil
   }
 
 
-  void Body::create_mesh(dealii::Triangulation<3> &tria) const
+  void Body::create_mesh(dealii::Triangulation<3> &tria, MeshNames *names) const
   {
     using namespace dealii;
     if (mesh_source == "box")
@@ -376,31 +397,128 @@ namespace anvil
                                          radius,
                                          0.5 * length);
     else
-      {
-        GridIn<3> grid_in;
-        grid_in.attach_triangulation(tria);
-        std::ifstream in(file_name);
-        const auto    ext = file_name.substr(file_name.find_last_of('.') + 1);
-        try
-          {
-            if (ext == "msh")
-              grid_in.read_msh(in);
-            else if (ext == "inp")
-              grid_in.read_abaqus(in);
-            else
-              throw InputError("mesh file '" + file_name +
-                               "': unknown extension (allowed: .msh, .inp)");
-          }
-        catch (const ExceptionBase &e)
-          {
-            throw InputError("mesh file '" + file_name +
-                             "' cannot be read: " + one_line_message(e));
-          }
-        if (scale != 1.)
-          GridTools::scale(scale, tria);
-      }
+      create_mesh_from_file(tria, names);
     tria.refine_global(refinements);
     if (offset.norm() > 0)
       GridTools::shift(offset, tria);
+    if (names)
+      for (auto &set : names->node_sets)
+        for (auto &x : set.second)
+          x = x * scale + offset;
+  }
+
+
+  // The cells of the file's 'Region' (all if empty) become this body's
+  // mesh, with the file's surfaces as boundary ids on their faces that lie
+  // on its boundary.
+  void Body::create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const
+  {
+    using namespace dealii;
+    const MeshFile::Contents file  = MeshFile::read(file_name);
+    const std::string        where = "subsection 'Body " + name + "/Mesh': ";
+    std::vector<bool>        take(file.cells.size(), region.empty());
+    for (const auto &r : region)
+      {
+        const auto set = file.cell_sets.find(r);
+        if (set == file.cell_sets.end())
+          throw InputError(where + "'Region' names '" + printable_excerpt(r) +
+                           "', which mesh file '" + file_name +
+                           "' does not define (its groups of cells: " +
+                           MeshFile::names_of(file.cell_sets) + ")");
+        for (const unsigned int c : set->second)
+          take[c] = true;
+      }
+
+    std::vector<unsigned int> index(file.vertices.size(), numbers::invalid_unsigned_int);
+    std::vector<Point<3>>     vertices;
+    std::vector<CellData<3>>  cells;
+    // Faces of the cells taken, by their sorted vertices: a face two cells
+    // share is interior and keeps no boundary id.
+    std::map<std::array<unsigned int, 4>, unsigned int> face_count;
+    auto sorted = [](std::array<unsigned int, 4> v) {
+      std::sort(v.begin(), v.end());
+      return v;
+    };
+    for (unsigned int c = 0; c < file.cells.size(); ++c)
+      if (take[c])
+        {
+          CellData<3> cell(8);
+          for (unsigned int v = 0; v < 8; ++v)
+            {
+              const unsigned int g = file.cells[c][v];
+              if (index[g] == numbers::invalid_unsigned_int)
+                {
+                  index[g] = vertices.size();
+                  vertices.push_back(file.vertices[g]);
+                }
+              cell.vertices[v] = index[g];
+            }
+          cells.push_back(cell);
+          for (const unsigned int f : GeometryInfo<3>::face_indices())
+            {
+              std::array<unsigned int, 4> face;
+              for (unsigned int v = 0; v < 4; ++v)
+                face[v] = file.cells[c][GeometryInfo<3>::face_to_cell_vertices(f, v)];
+              ++face_count[sorted(face)];
+            }
+        }
+    std::map<std::array<unsigned int, 4>, CellData<2>> boundary;
+    std::set<unsigned int>                            ids_on_body;
+    for (const auto &face : file.faces)
+      if (take[face.cell] && face_count[sorted(face.vertices)] == 1)
+        {
+          CellData<2> quad(4);
+          for (unsigned int v = 0; v < 4; ++v)
+            quad.vertices[v] = index[face.vertices[v]];
+          quad.boundary_id             = face.boundary_id;
+          boundary[sorted(face.vertices)] = quad;
+          ids_on_body.insert(face.boundary_id);
+        }
+    SubCellData subcell;
+    for (const auto &b : boundary)
+      subcell.boundary_quads.push_back(b.second);
+
+    try
+      {
+        GridTools::invert_all_negative_measure_cells(vertices, cells);
+        GridTools::consistently_order_cells(cells);
+        tria.create_triangulation(vertices, cells, subcell);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("mesh file '" + file_name + "' (body '" + name +
+                         "'): not a valid hexahedral mesh: " + one_line_message(e));
+      }
+    if (scale != 1.)
+      GridTools::scale(scale, tria);
+
+    if (!names)
+      return;
+    for (const auto &s : file.surfaces)
+      if (ids_on_body.count(s.second))
+        names->surfaces[s.first] = s.second;
+    for (const auto &s : file.node_sets)
+      {
+        std::vector<Point<3>> positions;
+        for (const unsigned int v : s.second)
+          if (index[v] != numbers::invalid_unsigned_int)
+            positions.push_back(file.vertices[v]);
+        if (!positions.empty())
+          names->node_sets[s.first] = positions;
+      }
+    names->note.clear();
+    if (!file.skipped.empty())
+      names->note = "mesh file '" + file_name + "': skipped " + file.skipped +
+                    " (a scene takes from a mesh file its mesh, sets and surfaces only)";
+    if (region.empty() && file.regions.size() > 1)
+      {
+        std::string list;
+        for (const auto &r : file.regions)
+          list += (list.empty() ? "" : ", ") + r;
+        names->note += std::string(names->note.empty() ? "" : "; ") + "mesh file '" + file_name +
+                       "' holds " + std::to_string(file.regions.size()) + " regions (" +
+                       printable_excerpt(list) +
+                       "), all taken as this one body ('Region' takes one)";
+      }
   }
 } // namespace anvil

@@ -63,7 +63,13 @@ namespace anvil
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         Triangulation<3> tria;
-        bodies[b].create_mesh(tria);
+        MeshNames        names;
+        bodies[b].create_mesh(tria, &names);
+        if (!names.note.empty())
+          pcout << "Warning: body '" << bodies[b].name << "': " << names.note << std::endl;
+        for (auto &bc : boundary_conditions)
+          if (bc.body == bodies[b].name)
+            bc.resolve_names(names);
         const unsigned int offset = vertices.size();
         std::vector<int>   new_index(tria.n_vertices(), -1);
         const auto        &used = tria.get_used_vertices();

@@ -1,7 +1,8 @@
 /**
  * @file
  * Kinematic boundary conditions: fixed or prescribed velocity on the nodes
- * of named boundary ids or inside a box.
+ * of named boundary ids, surfaces or node sets of a mesh file, or inside a
+ * box.
  */
 #pragma once
 
@@ -14,6 +15,8 @@
 
 namespace anvil
 {
+  struct MeshNames;
+
   /** One kinematic boundary condition of a scene (seed Eq. (28b)). */
   class BoundaryCondition
   {
@@ -21,6 +24,10 @@ namespace anvil
     static void declare_parameters(dealii::ParameterHandler &prm);
     void        parse_parameters(dealii::ParameterHandler &prm,
                                  const std::string        &name);
+
+    /** Turn the names of surfaces and node sets into boundary ids and
+        reference positions, from what the body's mesh file names. */
+    void resolve_names(const MeshNames &mesh);
 
     /** Whether a node of body @p body_name at reference position @p X on
         boundary ids @p ids (empty for interior nodes) is constrained. */
@@ -34,7 +41,12 @@ namespace anvil
     dealii::Tensor<1, 3>   velocity;
 
   private:
-    bool                      by_box = false;
+    bool                      by_box = false, by_node_set = false;
+    /** Names of surfaces or node sets, until resolve_names. */
+    std::vector<std::string>  names;
+    /** Node sets: their reference positions, sorted by x. */
+    std::vector<dealii::Point<3>> positions;
+    double                    tolerance = 0;
     std::vector<unsigned int> boundary_ids;
     dealii::Point<3>          lower, upper;
   };

@@ -13,11 +13,27 @@
 #include <deal.II/base/point.h>
 #include <deal.II/grid/tria.h>
 
+#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace anvil
 {
+  /**
+   * What a body's mesh file names (upper-case keys): the boundary id of
+   * each surface, and the reference positions of each node set, so that
+   * boundary conditions can select them.
+   */
+  struct MeshNames
+  {
+    std::map<std::string, unsigned int>                  surfaces;
+    std::map<std::string, std::vector<dealii::Point<3>>> node_sets;
+    /** A warning for the log (what the file held that the body ignores),
+        or empty. */
+    std::string note;
+  };
+
   /**
    * One deformable body. Its mesh is built serially (generators may refine
    * with their curved manifolds), then flattened into the scene's single
@@ -36,8 +52,9 @@ namespace anvil
                           const std::string        &name,
                           const std::string        &scene_directory);
 
-    /** Build this body's mesh (reference configuration). */
-    void create_mesh(dealii::Triangulation<3> &tria) const;
+    /** Build this body's mesh (reference configuration); for a mesh file,
+        also what it names (@p names, if given). */
+    void create_mesh(dealii::Triangulation<3> &tria, MeshNames *names = nullptr) const;
 
     std::string                                name;
     std::unique_ptr<MaterialModel::Interface> material;
@@ -72,6 +89,8 @@ namespace anvil
     }
 
   private:
+    void create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const;
+
     std::string          mesh_source;
     dealii::Point<3>     lower, upper;
     std::vector<unsigned int> subdivisions;
@@ -79,6 +98,8 @@ namespace anvil
     double               radius = 0, length = 0;
     unsigned int         axial_subdivisions = 1;
     std::string          file_name;
+    /** Names of the file's cell groups this body takes (all if empty). */
+    std::vector<std::string> region;
     dealii::Tensor<1, 3> offset;
     double               scale = 1;
     unsigned int         refinements = 0;
