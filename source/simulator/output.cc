@@ -364,7 +364,7 @@ namespace anvil
   {
     const unsigned int  nb = bodies.size();
     std::vector<double> count(3 * nb, 0.), peak(2 * nb, 0.), lo(3 * nb, 1e300), hi(3 * nb, -1e300);
-    std::vector<double> dissipated(nb, 0.);
+    std::vector<double> dissipated(nb, 0.), volume(nb, 0.);
     for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
         const auto        &group = element_groups[g];
@@ -383,6 +383,7 @@ namespace anvil
                                    group.n_quadrature_points();
               count[3 * b] += 1;
               count[3 * b + 1] += eroded;
+              volume[b] += group.element_reference_volume(e);
               if (it == names.end())
                 continue;
               double eps_p = 0;
@@ -402,6 +403,7 @@ namespace anvil
       }
     Utilities::MPI::sum(count, mpi_communicator, count);
     Utilities::MPI::sum(dissipated, mpi_communicator, dissipated);
+    Utilities::MPI::sum(volume, mpi_communicator, volume);
     Utilities::MPI::max(peak, mpi_communicator, peak);
     Utilities::MPI::min(lo, mpi_communicator, lo);
     Utilities::MPI::max(hi, mpi_communicator, hi);
@@ -411,13 +413,13 @@ namespace anvil
     std::ofstream out(output_directory + "/bodies.csv");
     out << "body,elements,eroded,peak_effective_plastic_strain_intact,"
            "peak_effective_plastic_strain,xmin,ymin,zmin,xmax,ymax,zmax,"
-           "dissipated_energy\n"
+           "dissipated_energy,reference_volume\n"
         << std::setprecision(12);
     for (unsigned int b = 0; b < nb; ++b)
       out << bodies[b].name << ',' << count[3 * b] << ',' << count[3 * b + 1] << ','
           << peak[2 * b] << ',' << peak[2 * b + 1] << ',' << lo[3 * b] << ',' << lo[3 * b + 1]
           << ',' << lo[3 * b + 2] << ',' << hi[3 * b] << ',' << hi[3 * b + 1] << ','
-          << hi[3 * b + 2] << ',' << dissipated[b] << '\n';
+          << hi[3 * b + 2] << ',' << dissipated[b] << ',' << volume[b] << '\n';
   }
 
 

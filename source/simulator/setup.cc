@@ -67,6 +67,8 @@ namespace anvil
         bodies[b].create_mesh(tria, &names);
         if (!names.note.empty())
           pcout << "Warning: body '" << bodies[b].name << "': " << names.note << std::endl;
+        if (!names.info.empty())
+          pcout << "Body '" << bodies[b].name << "': " << names.info << std::endl;
         for (auto &bc : boundary_conditions)
           if (bc.body == bodies[b].name)
             bc.resolve_names(names);

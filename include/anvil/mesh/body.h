@@ -32,6 +32,9 @@ namespace anvil
     /** A warning for the log (what the file held that the body ignores),
         or empty. */
     std::string note;
+    /** A line for the log about the mesh (a cylinder's section), or
+        empty. */
+    std::string info;
   };
 
   /**
@@ -97,6 +100,7 @@ namespace anvil
     dealii::Tensor<1, 3>      grading;
     double               radius = 0, length = 0;
     unsigned int         axial_subdivisions = 1;
+    unsigned int         section_refinements = 0;
     std::string          file_name;
     /** Names of the file's cell groups this body takes (all if empty). */
     std::vector<std::string> region;
