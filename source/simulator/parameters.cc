@@ -355,6 +355,15 @@ namespace anvil
                         Patterns::Bool(),
                         "Print the TimerOutput summary and the estimated "
                         "time left (off for comparable screen output).");
+      prm.declare_entry("Progress interval",
+                        "5",
+                        Patterns::Double(0.),
+                        "Wall time between progress lines (step, time, step "
+                        "size, energies, balance, time left from the rate "
+                        "since the start) and updates of the file 'status' in "
+                        "the output directory. 0, or 'Print wall times = "
+                        "false': every 10 % of the end time instead, so that "
+                        "screen output compares between runs. Units: s.");
     }
     prm.leave_subsection();
 
@@ -621,6 +630,7 @@ namespace anvil
             gravity[d] = dealii::Utilities::string_to_double(g[d]);
         }
         print_wall_times = prm.get_bool("Print wall times");
+        progress_interval = prm.get_double("Progress interval");
         make_plots       = prm.get_bool("Plots");
         checkpoint_interval      = prm.get_double("Checkpoint interval");
         checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");

@@ -689,6 +689,26 @@ namespace anvil
         // Every rank arrives here together (input errors and numerical
         // failures follow from replicated data or global reductions); the
         // timing summary of a failed run is of no use.
+        if (output_directory_ready)
+          {
+            std::string message = "unknown error";
+            try
+              {
+                throw;
+              }
+            catch (const std::exception &e)
+              {
+                message = e.what();
+              }
+            catch (...)
+              {}
+            try
+              {
+                write_status("stopped", time, -1., -1., message);
+              }
+            catch (...)
+              {}
+          }
         if (timer)
           {
             timer->disable_output();
@@ -717,6 +737,8 @@ namespace anvil
             check_checkpoint(resume_from);
           prepare_output_directory();
         }
+      output_directory_ready = true;
+      record_output("status");
       position.update_ghost_values();
       velocity.update_ghost_values();
       good_position = position;
@@ -780,6 +802,7 @@ namespace anvil
     double      &next_output   = loop.next_output;
     double      &next_history  = loop.next_history;
     double      &next_progress = loop.next_progress;
+    double       next_wall_progress = 0;
     next_checkpoint            = checkpoint_interval > 0 ? time + checkpoint_interval : 1e300;
     last_checkpoint_wall       = wall_start;
     const double eps           = 1e-12 * end_time;
@@ -823,20 +846,31 @@ namespace anvil
             write_history(time, last ? 0. : current_dt);
             next_history += history_interval;
           }
-        if (time >= next_progress - eps || last)
+        // Progress: every 'Progress interval' of wall time (rank 0 alone
+        // decides: printing involves no other rank), or every 10 % of the
+        // end time where screen output must compare between runs.
+        const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        const bool by_wall = print_wall_times && progress_interval > 0;
+        if ((by_wall ? (wall >= next_wall_progress || step_number == 0) :
+                       time >= next_progress - eps) ||
+            last)
           {
-            const double wall =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+            const double eta =
+              time > time_start ? wall / (time - time_start) * (end_time - time) : -1.;
+            if (!last)
+              write_status("running", time, wall, eta);
+            next_wall_progress = wall + progress_interval;
             pcout << "  step " << std::setw(7) << step_number << "  t = " << std::setw(11)
                   << std::setprecision(5) << time << " s  dt = " << std::setw(10)
                   << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
                   << "  E_int = " << std::setw(10) << energies.internal
                   << "  balance = " << std::setw(9) << balance_error;
-            if (print_wall_times && time > 0)
-              pcout << "  left ~" << std::setprecision(3)
-                    << wall / std::max(time - time_start, 1e-300) * (end_time - time) << " s";
+            if (print_wall_times && eta >= 0)
+              pcout << "  left ~" << std::setprecision(3) << eta << " s";
             pcout << std::endl;
-            next_progress += 0.1 * end_time;
+            while (next_progress <= time + eps)
+              next_progress += 0.1 * end_time;
           }
         if (last)
           break;
@@ -902,8 +936,11 @@ namespace anvil
         write_checkpoint();
       }
     write_body_summary();
-    write_summary(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
+    const double wall_total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    write_summary(wall_total);
     write_plots();
+    write_status("finished", time, wall_total, 0.);
     if (summary.ended_early)
       pcout << "  the impact is over (no contact force, kinetic energy of the deformable bodies below "
             << end_kinetic_fraction << " E_0 for " << end_quiet_time
@@ -919,5 +956,34 @@ namespace anvil
     pcout << "\n"
           << "  results: " << output_directory << "/energy.csv, "
           << output_directory << "/solution.pvd" << std::endl;
+  }
+
+
+  void Simulator::write_status(const std::string &state, const double t, const double wall_seconds,
+                               const double eta_seconds, const std::string &message) const
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !output_directory_ready)
+      return;
+    const std::string file = output_directory + "/status";
+    {
+      std::ofstream out(file + ".tmp");
+      out << std::setprecision(8) << "state: " << state << "\nstep: " << step_number
+          << "\ntime_s: " << t << "\nend_time_s: " << end_time
+          << "\nfraction_done: " << std::setprecision(4) << t / end_time << std::setprecision(8)
+          << "\ntime_step_s: " << current_dt << "\nkinetic_energy_J: " << energies.kinetic
+          << "\ninternal_energy_J: " << energies.internal << "\nbalance_error: " << balance_error;
+      if (wall_seconds >= 0)
+        out << "\nwall_time_s: " << std::setprecision(4) << wall_seconds;
+      if (eta_seconds >= 0)
+        out << "\nwall_time_left_s: " << std::setprecision(4) << eta_seconds;
+      if (!message.empty())
+        out << "\nmessage: " << printable_excerpt(message);
+      out << '\n';
+      out.flush();
+      if (!out)
+        throw OutputError("cannot write " + file + ".tmp (the run's status)");
+    }
+    if (std::rename((file + ".tmp").c_str(), file.c_str()) != 0)
+      throw OutputError("cannot rename " + file + ".tmp to " + file);
   }
 } // namespace anvil

@@ -239,6 +239,11 @@ namespace anvil
     void write_history(double time, double dt);
     void output_results(double time, const std::string &basename);
     void write_pvd();
+    /** The 'status' file of the output directory (rank 0; written whole,
+        then renamed over the last one): @p state ('running', 'finished',
+        'stopped') and the run's progress, for a user to follow. */
+    void write_status(const std::string &state, double time, double wall_seconds,
+                      double eta_seconds, const std::string &message = "") const;
     /** bodies.csv at the end of a run: per body, elements, eroded elements,
         peak effective plastic strain, current bounding box. */
     void write_body_summary();
@@ -306,6 +311,11 @@ namespace anvil
     dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
     bool        print_wall_times;
+    /** Wall time between progress lines (0: every 10 % of the end time). */
+    double      progress_interval = 5;
+    /** Whether this run's output directory exists (a status file can go
+        there). */
+    bool        output_directory_ready = false;
     bool        make_plots = false;
     unsigned int max_steps;
 
