@@ -1,42 +1,38 @@
-"""Read the VTU files deal.II's DataOut writes for Anvil (zlib-compressed
-binary, UInt32 headers), without VTK: each cell is a patch of its own
-vertices, so a point-data array holds every cell's value once per vertex.
-Used by the tests and by the figure scripts of prm/."""
-import base64
-import struct
-import xml.etree.ElementTree as ET
-import zlib
+"""Read Anvil's VTU output with the VTK library (Debian's python3-vtk9, the
+library ParaView reads it with; run with /usr/bin/python3). Used by the
+tests and by the figure scripts of prm/.
 
-_SIZES = {"Float32": ("f", 4), "Float64": ("d", 8), "Int32": ("i", 4), "UInt8": ("B", 1)}
+Anvil writes one connected piece per process (solution_NNNN.R.vtu) and a
+record naming them (solution_NNNN.pvtu): points carry node_id,
+displacement and velocity; cells carry element_id, body and the fields;
+the field data TIME is the frame's time."""
+import vtk
+from vtk.util.numpy_support import vtk_to_numpy
 
 
-def _decode(array):
-    text = array.text.strip()
-    n_blocks = struct.unpack("<I", base64.b64decode(text[:8])[:4])[0]
-    header_chars = 4 * ((4 * (3 + n_blocks) + 2) // 3)
-    header = struct.unpack(f"<{3 + n_blocks}I", base64.b64decode(text[:header_chars]))
-    data = base64.b64decode(text[header_chars:])
-    raw, at = b"", 0
-    for size in header[3:]:
-        raw += zlib.decompress(data[at:at + size])
-        at += size
-    code, width = _SIZES[array.get("type")]
-    return struct.unpack(f"<{len(raw) // width}{code}", raw)
+def read_grid(path):
+    """The vtkUnstructuredGrid of a .vtu piece or of a whole .pvtu frame."""
+    reader = (vtk.vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu")
+              else vtk.vtkXMLUnstructuredGridReader())
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def arrays(data):
+    """{name: numpy array} of a vtkPointData, vtkCellData or vtkFieldData."""
+    return {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i))
+            for i in range(data.GetNumberOfArrays())}
 
 
 def read_vtu(path):
     """Return (centres, cells): the centre (x, y, z) of each cell, and
-    {name: [value per cell]} for the scalar arrays."""
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-    n_points, n_cells = int(piece.get("NumberOfPoints")), int(piece.get("NumberOfCells"))
-    per_cell = n_points // n_cells
-    cells = {}
-    for array in piece.find("PointData"):
-        if int(array.get("NumberOfComponents", "1")) == 1:
-            cells[array.get("Name")] = list(_decode(array)[::per_cell])
-    xyz = _decode(piece.find("Points/DataArray"))
-    centres = []
-    for c in range(n_cells):
-        block = xyz[3 * per_cell * c:3 * per_cell * (c + 1)]
-        centres.append(tuple(sum(block[d::3]) / per_cell for d in range(3)))
-    return centres, cells
+    {name: [value per cell]} for the scalar cell arrays, of a .vtu piece or
+    a .pvtu frame."""
+    grid = read_grid(path)
+    centres = vtk.vtkCellCenters()
+    centres.SetInputData(grid)
+    centres.Update()
+    xyz = vtk_to_numpy(centres.GetOutput().GetPoints().GetData())
+    cells = {k: list(v) for k, v in arrays(grid.GetCellData()).items() if v.ndim == 1}
+    return [tuple(p) for p in xyz], cells

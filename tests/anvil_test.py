@@ -124,8 +124,8 @@ def read_csv(path):
 
 
 def read_vtu_cells(path):
-    """Cell values of a VTU file of Anvil's: {name: [value per cell]} for
-    the scalar arrays (scripts/anvil_vtu.py)."""
+    """Cell values of a VTU piece or a PVTU frame of Anvil's, read with VTK:
+    {name: [value per cell]} for the scalar arrays (scripts/anvil_vtu.py)."""
     return read_vtu(path)[1]
 
 

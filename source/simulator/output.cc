@@ -3,6 +3,7 @@
  * Histories (CSV) and fields (VTU/PVTU with a PVD time series).
  */
 #include <anvil/simulator/simulator.h>
+#include <anvil/utilities/vtu_file.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -295,67 +296,101 @@ namespace anvil
           rank[c]    = my_rank;
         }
 
-    DataOut<3> data_out;
-    data_out.attach_dof_handler(dof_handler);
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_kind(3, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(displacement,
-                             std::vector<std::string>(3, "displacement"),
-                             DataOut<3>::type_dof_data,
-                             vector_kind);
-    data_out.add_data_vector(velocity,
-                             std::vector<std::string>(3, "velocity"),
-                             DataOut<3>::type_dof_data,
-                             vector_kind);
+    // One connected piece per process: the points of its cells (shared
+    // by the cells around them), node ids from the scene's coarse vertices
+    // and element ids from its coarse cells, the same on any number of
+    // processes.
+    Vtu::Piece                 piece;
+    std::vector<std::int64_t>  point_of(triangulation.n_vertices(), -1);
+    std::vector<double>        node_id, u_values, v_values, element_id;
+    std::vector<unsigned int>  cells;
+    static constexpr unsigned int vtk_order[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cells.push_back(cell->active_cell_index());
+          element_id.push_back(cell->id().get_coarse_cell_id());
+          for (const unsigned int v : vtk_order)
+            {
+              const unsigned int vertex = cell->vertex_index(v);
+              if (point_of[vertex] < 0)
+                {
+                  point_of[vertex] = node_id.size();
+                  node_id.push_back(vertex);
+                  for (unsigned int d = 0; d < 3; ++d)
+                    {
+                      piece.points.push_back(cell->vertex(v)[d]);
+                      const auto dof = cell->vertex_dof_index(v, d);
+                      u_values.push_back(displacement(dof));
+                      v_values.push_back(velocity(dof));
+                    }
+                }
+              piece.hexahedra.push_back(point_of[vertex]);
+            }
+        }
+    using Type = Vtu::Array::Type;
+    piece.point_data.push_back({"displacement", 3, Type::float64, u_values});
+    piece.point_data.push_back({"velocity", 3, Type::float64, v_values});
+    piece.point_data.push_back({"node_id", 1, Type::int64, node_id});
+    piece.cell_data.push_back({"element_id", 1, Type::int64, element_id});
+    auto add = [&](const std::string &name, const Vector<float> &field, const Type type) {
+      std::vector<double> values(cells.size());
+      for (unsigned int i = 0; i < cells.size(); ++i)
+        values[i] = field[cells[i]];
+      piece.cell_data.push_back({name, 1, type, values});
+    };
+    add("body", body_id, Type::int64);
     const char *names[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
     for (unsigned int k = 0; k < 6; ++k)
       {
-        data_out.add_data_vector(stress[k], std::string("stress_") + names[k]);
-        data_out.add_data_vector(strain[k], std::string("strain_") + names[k]);
+        add(std::string("stress_") + names[k], stress[k], Type::float32);
+        add(std::string("strain_") + names[k], strain[k], Type::float32);
       }
-    data_out.add_data_vector(von_mises, "von_mises");
-    data_out.add_data_vector(internal_density, "internal_energy_density");
-    data_out.add_data_vector(hourglass_density, "hourglass_energy_density");
+    add("von_mises", von_mises, Type::float32);
+    add("internal_energy_density", internal_density, Type::float32);
+    add("hourglass_energy_density", hourglass_density, Type::float32);
     for (const auto &[name, field] : history_fields)
-      data_out.add_data_vector(field, name);
+      add(name, field, Type::float32);
     if (n_eroded > 0 || std::any_of(element_groups.begin(), element_groups.end(), [](const auto &g) {
           return g.get_material().erodes();
         }))
-      data_out.add_data_vector(eroded, "eroded");
-    data_out.add_data_vector(body_id, "body");
-    data_out.add_data_vector(rank, "mpi_rank");
-    data_out.build_patches();
+      add("eroded", eroded, Type::float32);
+    add("mpi_rank", rank, Type::int64);
 
-    DataOutBase::VtkFlags flags;
-    flags.time  = t;
-    flags.cycle = output_count;
-    flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    data_out.set_flags(flags);
+    // Each process its piece, rank 0 the record naming them.
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const std::string  frame =
+      basename == "solution" ? basename + "_" + Utilities::int_to_string(output_count, 4) : basename;
+    record_output(frame + ".pvtu");
+    std::vector<std::string> files;
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      {
+        files.push_back(frame + "." + std::to_string(r) + ".vtu");
+        record_output(files.back());
+      }
+    std::string failure;
+    try
+      {
+        write_atomically(output_directory + "/" +
+                           files[Utilities::MPI::this_mpi_process(mpi_communicator)],
+                         Vtu::vtu_text(piece, t, output_count));
+      }
+    catch (const OutputError &e)
+      {
+        failure = e.what();
+      }
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(failure.empty() ? "a VTU piece could not be written on another process" :
+                                          failure);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      write_atomically(output_directory + "/" + frame + ".pvtu", Vtu::pvtu_text(piece, files));
     if (basename == "solution")
       {
-        const std::string frame = basename + "_" + Utilities::int_to_string(output_count, 4);
-        record_output(frame + ".pvtu");
-        for (unsigned int r = 0; r < Utilities::MPI::n_mpi_processes(mpi_communicator); ++r)
-          record_output(frame + "." + std::to_string(r) + ".vtu");
-        const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-          output_directory + "/", basename, output_count, mpi_communicator, 4);
-        pvd_records.emplace_back(t, pvtu);
+        pvd_records.emplace_back(t, frame + ".pvtu");
         write_frame_index();
         if (!rebars.empty())
           output_rebar(t, output_count);
         ++output_count;
-      }
-    else
-      {
-        const std::string file = output_directory + "/" + basename;
-        record_output(basename + ".vtu");
-        record_output(basename + ".pvtu");
-        data_out.write_vtu_in_parallel(file + ".vtu", mpi_communicator);
-        if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-          {
-            std::ofstream pvtu(file + ".pvtu");
-            data_out.write_pvtu_record(pvtu, {basename + ".vtu"});
-          }
       }
   }
 
@@ -428,9 +463,7 @@ namespace anvil
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     record_output("solution.pvd");
-    std::ostringstream pvd;
-    DataOutBase::write_pvd_record(pvd, pvd_records);
-    write_atomically(output_directory + "/solution.pvd", pvd.str());
+    write_atomically(output_directory + "/solution.pvd", Vtu::pvd_text(pvd_records));
   }
 
 

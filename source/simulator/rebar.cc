@@ -4,6 +4,7 @@
  * with perfect bond (seed sections 5.1, 5.3, 5.4). See rebar/rebar.h.
  */
 #include <anvil/simulator/simulator.h>
+#include <anvil/utilities/vtu_file.h>
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/data_out_base.h>
@@ -518,9 +519,8 @@ namespace anvil
         out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
         write_atomically(output_directory + "/" + file, out.str());
         T.pvd_records.emplace_back(t, file);
-        std::ostringstream pvd;
-        DataOutBase::write_pvd_record(pvd, T.pvd_records);
-        write_atomically(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd", pvd.str());
+        write_atomically(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd",
+                         Vtu::pvd_text(T.pvd_records));
       }
   }
 

@@ -563,7 +563,7 @@ namespace anvil
 
     // Where: the element of the fastest node (or the inverted one).
     double vmax = -1;
-    long   cell = -1;
+    long   cell = -1, element_id = -1;
     for (const auto &group : element_groups)
       for (unsigned int e = 0; e < group.n_elements(); ++e)
         {
@@ -578,8 +578,9 @@ namespace anvil
                 s = 1e308;
               if (s > vmax)
                 {
-                  vmax = s;
-                  cell = group.element_cell_index(e);
+                  vmax       = s;
+                  cell       = group.element_cell_index(e);
+                  element_id = group.element_global_id(e);
                 }
             }
         }
@@ -597,7 +598,8 @@ namespace anvil
             where = c->center();
             body  = c->material_id();
           }
-    std::array<double, 5> info{{where[0], where[1], where[2], double(body), double(cell)}};
+    // The element by its scene-wide id (element_id in the VTU output).
+    std::array<double, 5> info{{where[0], where[1], where[2], double(body), double(element_id)}};
     if (owner >= 0)
       info = Utilities::MPI::broadcast(mpi_communicator, info, owner);
 

@@ -1,0 +1,54 @@
+/**
+ * @file
+ * VTK XML unstructured grids of hexahedra written by Anvil itself: one
+ * connected piece per process (points shared by the cells around them,
+ * not eight per cell as deal.II's DataOut writes them), global node and
+ * element ids, and the time as field data, so that ParaView, VTK and
+ * scripts see the mesh a user meshed.
+ */
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anvil::Vtu
+{
+  /** A named array of point or cell data. */
+  struct Array
+  {
+    enum class Type
+    {
+      float32,
+      float64,
+      int64
+    };
+    std::string         name;
+    unsigned int        components = 1;
+    Type                type       = Type::float32;
+    std::vector<double> values; // components per point or cell
+  };
+
+  /** What one process writes. */
+  struct Piece
+  {
+    /** x, y, z of each point. */
+    std::vector<double>       points;
+    /** Eight points per hexahedron, in VTK's order. */
+    std::vector<std::int64_t> hexahedra;
+    std::vector<Array>        point_data, cell_data;
+  };
+
+  /** The text of a .vtu file of @p piece (inline base64 binary, little
+      endian, UInt64 headers), with the field data TIME and CYCLE. */
+  std::string vtu_text(const Piece &piece, double time, unsigned int cycle);
+
+  /** The text of a .pvtu file whose pieces are @p files (relative to it),
+      with the arrays of @p layout (its values unused). */
+  std::string pvtu_text(const Piece &layout, const std::vector<std::string> &files);
+
+  /** The text of a .pvd collection (ParaView's frame index) of the frames
+      @p records (time, file relative to it), times in full precision. */
+  std::string pvd_text(const std::vector<std::pair<double, std::string>> &records);
+} // namespace anvil::Vtu
