@@ -8,6 +8,7 @@
  * whole file is parsed strictly against the full declaration, so a
  * misspelled entry is an error, not a silently ignored line.
  */
+#include <anvil/mesh/mesh_file.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 #include <anvil/utilities/plugins.h>
@@ -402,6 +403,10 @@ namespace anvil
         prm.declare_entry("Body", "", Patterns::Anything(),
                           "Body whose node is probed (required when bodies "
                           "touch).");
+        prm.declare_entry("Node set", "", Patterns::Anything(),
+                          "A node set of one node in the mesh file of 'Body' "
+                          "(ABAQUS *Nset, 'INSTANCE.SET'); its node replaces "
+                          "'Point'.");
         prm.leave_subsection();
       }
   }
@@ -708,8 +713,12 @@ namespace anvil
             const auto p   = dealii::Utilities::split_string_list(prm.get("Point"));
             for (unsigned int d = 0; d < 3; ++d)
               probes[i].point[d] = dealii::Utilities::string_to_double(p[d]);
-            probes[i].body = prm.get("Body");
+            probes[i].body     = prm.get("Body");
+            probes[i].node_set = MeshFile::key(prm.get("Node set"));
             prm.leave_subsection();
+            if (!probes[i].node_set.empty() && probes[i].body.empty())
+              throw InputError("subsection 'Probe " + probe_names[i] +
+                               "': 'Node set' needs 'Body' (whose mesh file holds the set)");
             if (!probes[i].body.empty())
               check_body(probes[i].body, "Probe " + probe_names[i]);
           }

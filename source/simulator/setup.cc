@@ -4,6 +4,7 @@
  * DoFs and ghosted nodal vectors, the element groups of the fast loop, the
  * lumped mass, boundary conditions, contact surfaces and probes.
  */
+#include <anvil/mesh/mesh_file.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
@@ -72,6 +73,22 @@ namespace anvil
         for (auto &bc : boundary_conditions)
           if (bc.body == bodies[b].name)
             bc.resolve_names(names);
+        for (auto &probe : probes)
+          if (probe.body == bodies[b].name && !probe.node_set.empty())
+            {
+              const auto set = names.node_sets.find(probe.node_set);
+              const std::string where = "subsection 'Probe " + probe.name + "': 'Node set' ";
+              if (set == names.node_sets.end())
+                throw InputError(where + "names '" + printable_excerpt(probe.node_set) +
+                                 "', which body '" + bodies[b].name +
+                                 "' does not have (its node sets: " +
+                                 MeshFile::names_of(names.node_sets) + ")");
+              if (set->second.size() != 1)
+                throw InputError(where + "'" + probe.node_set + "' has " +
+                                 std::to_string(set->second.size()) +
+                                 " nodes (a probe follows one: make a set of one node)");
+              probe.point = set->second[0];
+            }
         const unsigned int offset = vertices.size();
         std::vector<int>   new_index(tria.n_vertices(), -1);
         const auto        &used = tria.get_used_vertices();

@@ -16,6 +16,8 @@ file:
   a bar left unrotated would be loaded in shear, 29 % lower);
 - the surface and the node set select the same nodes (same reaction),
   and np = 2 equals np = 1;
+- a probe on a one-node set follows that node (the free end: -v0 until
+  the wave arrives, +v0 after it reflects);
 - bad references stop with one line naming what exists."""
 import math
 import os
@@ -58,7 +60,8 @@ def block_part(name, n, size, node0, elem0, extra=""):
 
 bar, bar_nodes = block_part("Bar", (10, 1, 1), (100, 10, 10), 501, 1001, extra=(
     "*Elset, elset=_Front_S6, internal\n 1001,\n"
-    "*Surface, type=ELEMENT, name=Front\n_Front_S6, S6"))
+    "*Surface, type=ELEMENT, name=Front\n_Front_S6, S6\n"
+    "*Nset, nset=Tip\n 511,"))
 plate, _ = block_part("Plate", (2, 2, 1), (20, 20, 5), 1, 1)
 end_nodes = ", ".join(str(bar_nodes[0, j, k]) for j in (0, 1) for k in (0, 1))
 deck = f"""*Heading
@@ -192,6 +195,11 @@ subsection Boundary condition support
   set Body = bar
   set Selection = {selection}
   set Components = y
+end
+set Probes = tip
+subsection Probe tip
+  set Body = bar
+  set Node set = Bar-1.Tip
 end"""
         prm = scene(f"wave_{name}_np{np}", [("bar", "Bar-1", f"0, {-v0}, 0")], 1.8 * length / cbar,
                     extra=bc)
@@ -205,6 +213,15 @@ end"""
         if np == 1:
             c.check(f"{name}: mean support reaction while the wave runs, rho c v0 A [N]",
                     sum(window) / len(window), force, 0.02, relative=True)
+            # The probe on node set 'Bar-1.Tip' (node 511, the free end):
+            # -v0 until the wave arrives at L / c, +v0 after its reflection.
+            p = read_csv(os.path.join(args.work_dir, f"output/wave_{name}_np{np}/probe_tip.csv"))
+            before = [vy for t, vy in zip(p["time"], p["vy"]) if t <= 0.8 * length / cbar]
+            after = [vy for t, vy in zip(p["time"], p["vy"]) if 1.3 * length / cbar <= t]
+            c.check(f"{name}: probe on node set 'Bar-1.Tip' (free end) before the wave [m/s]",
+                    max(abs(v + v0) for v in before), 0.0, 1e-9)
+            c.check(f"{name}: probe at the free end after the reflection, mean [m/s]",
+                    sum(after) / len(after), v0, 0.03, relative=True)
 for name in ("surface", "node_set"):
     if (name, 1) in reactions and (name, 2) in reactions:
         a, b = reactions[name, 1], reactions[name, 2]

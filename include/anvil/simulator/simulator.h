@@ -68,6 +68,9 @@ namespace anvil
     std::string      name;
     std::string      body;
     dealii::Point<3> point;
+    /** A one-node set of the body's mesh file that gives 'point' (upper
+        case), or empty. */
+    std::string      node_set;
     /** Global x-dof index of the chosen node, and its owner. */
     unsigned long x_dof = 0;
     int           owner = 0;
