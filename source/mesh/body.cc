@@ -528,14 +528,60 @@ namespace anvil
 
     try
       {
-        GridTools::invert_all_negative_measure_cells(vertices, cells);
+        // Every corner of every cell must have a positive Jacobian: a cell
+        // written the other way round (all eight negative) is turned, a
+        // flat or twisted one (mixed signs, or zero) would have no mass or
+        // a negative volume.
+        std::vector<unsigned int> taken;
+        for (unsigned int c = 0; c < file.cells.size(); ++c)
+          if (take[c])
+            taken.push_back(c);
+        auto corner_signs = [&](const CellData<3> &cell, unsigned int &positive) {
+          positive = 0;
+          for (unsigned int corner = 0; corner < 8; ++corner)
+            {
+              Tensor<2, 3> J;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  const unsigned int bit  = 1u << d;
+                  const Tensor<1, 3> edge = vertices[cell.vertices[corner ^ bit]] -
+                                            vertices[cell.vertices[corner]];
+                  for (unsigned int e = 0; e < 3; ++e)
+                    J[e][d] = (corner & bit) ? -edge[e] : edge[e];
+                }
+              const double det = determinant(J);
+              if (det > 0)
+                ++positive;
+              else if (!(det < 0))
+                return false;
+            }
+          return true;
+        };
+        for (unsigned int i = 0; i < cells.size(); ++i)
+          {
+            unsigned int positive = 0;
+            bool         nonzero  = corner_signs(cells[i], positive);
+            if (nonzero && positive == 0)
+              {
+                // Mirrored: swap the two ends along the cell's x.
+                for (unsigned int v = 0; v < 8; v += 2)
+                  std::swap(cells[i].vertices[v], cells[i].vertices[v + 1]);
+                nonzero = corner_signs(cells[i], positive);
+              }
+            if (!nonzero || positive != 8)
+              throw InputError("mesh file '" + file_name + "': element " +
+                               std::to_string(file.labels.empty() ? long(taken[i]) :
+                                                                    file.labels[taken[i]]) +
+                               " (body '" + name + "') is flat or twisted: the Jacobian "
+                               "is not positive at all its corners");
+          }
         GridTools::consistently_order_cells(cells);
         tria.create_triangulation(vertices, cells, subcell);
       }
     catch (const ExceptionBase &e)
       {
         throw InputError("mesh file '" + file_name + "' (body '" + name +
-                         "'): not a valid hexahedral mesh: " + one_line_message(e));
+                         "'): not a valid hexahedral mesh: " + one_line_message(e).substr(0, 300));
       }
     if (scale != 1.)
       GridTools::scale(scale, tria);

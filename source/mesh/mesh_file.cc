@@ -8,8 +8,6 @@
 #include <anvil/mesh/mesh_file.h>
 #include <anvil/utilities/input_error.h>
 
-#include <deal.II/grid/grid_in.h>
-#include <deal.II/grid/tria.h>
 
 #include <algorithm>
 #include <cctype>
@@ -20,6 +18,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 namespace anvil::MeshFile
 {
@@ -644,6 +643,7 @@ namespace anvil::MeshFile
                                  (p.name.empty() ? std::string() : " in part '" + p.name + "'"));
               own.push_back(out.cells.size());
               out.cells.push_back({{v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]}});
+              out.labels.push_back(element.first);
             }
           if (in.name != p.name && !p.name.empty())
             {
@@ -693,144 +693,393 @@ namespace anvil::MeshFile
 
     // @sect3{Gmsh files}
     //
-    // deal.II reads the ASCII formats 2.2 and 4.1: physical volume tags
-    // become material ids, physical surface tags boundary ids. The names
-    // of physical groups come from the $PhysicalNames section.
-    Contents read_gmsh(const std::string &file_name)
+    // ASCII formats 2.2 and 4.1, read and checked here (deal.II's reader
+    // trusts its input: a damaged file corrupted memory). Hexahedra (type
+    // 5) become cells, grouped by physical volume; quadrangles (type 3) of
+    // physical surfaces label the cell faces they cover; other elements of
+    // lower dimension are ignored, other volume elements refused.
+    class GmshReader
     {
-      std::map<std::pair<int, int>, std::string> physical_names; // (dim, tag) -> name
+    public:
+      explicit GmshReader(const std::string &file_name)
+        : file(file_name)
+        , in(file_name)
       {
-        std::ifstream in(file_name);
         if (!in)
-          throw InputError("mesh file '" + file_name + "' cannot be opened");
-        std::string  line;
-        unsigned int number = 0;
-        while (std::getline(in, line))
-          {
-            ++number;
-            line = trim(line);
-            if (line == "$MeshFormat")
-              {
-                std::string format;
-                std::getline(in, format);
-                ++number;
-                std::istringstream f(format);
-                double             version = 0;
-                int                binary  = -1;
-                f >> version >> binary;
-                if (binary == 1)
-                  throw InputError("mesh file '" + file_name +
-                                   "' is a binary Gmsh file: Anvil reads ASCII .msh "
-                                   "(format 2.2 or 4.1; Gmsh: -format msh41 without -bin, "
-                                   "or Mesh.Binary = 0)");
-                if (!(version >= 2 && version < 5) || binary != 0)
-                  throw InputError("mesh file '" + file_name + "', line " +
-                                   std::to_string(number) + ": '" + printable_excerpt(format) +
-                                   "' is not a Gmsh format line (allowed: ASCII 2.2 or 4.1)");
-              }
-            else if (line == "$PhysicalNames")
-              {
-                std::getline(in, line);
-                ++number;
-                const int n = std::atoi(line.c_str());
-                for (int i = 0; i < n && std::getline(in, line); ++i)
-                  {
-                    ++number;
-                    std::istringstream entry(line);
-                    int                dim = -1, tag = -1;
-                    entry >> dim >> tag;
-                    const auto q1 = line.find('"'), q2 = line.rfind('"');
-                    if (dim < 0 || tag < 0 || q1 == std::string::npos || q2 <= q1)
-                      throw InputError("mesh file '" + file_name + "', line " +
-                                       std::to_string(number) + ": '" +
-                                       printable_excerpt(line) +
-                                       "' is not 'dimension tag \"name\"'");
-                    physical_names[{dim, tag}] = key(line.substr(q1 + 1, q2 - q1 - 1));
-                  }
-              }
-            else if (line == "$Nodes")
-              break; // names and format come first
-          }
+          throw InputError("mesh file '" + file + "' cannot be opened");
+        in.seekg(0, std::ios::end);
+        bytes = static_cast<double>(in.tellg());
+        in.seekg(0);
       }
 
-      dealii::Triangulation<3> tria;
+      Contents read()
       {
-        dealii::GridIn<3> grid_in;
-        grid_in.attach_triangulation(tria);
-        std::ifstream in(file_name);
-        try
+        std::string line;
+        while (next_line(line))
           {
-            grid_in.read_msh(in);
+            if (line == "$MeshFormat")
+              read_format();
+            else if (line == "$PhysicalNames")
+              read_names();
+            else if (line == "$Entities")
+              read_entities();
+            else if (line == "$Nodes")
+              read_nodes();
+            else if (line == "$Elements")
+              read_elements();
+            else if (!line.empty() && line[0] == '$' && line.rfind("$End", 0) != 0)
+              skip_section(line);
           }
-        catch (const dealii::ExceptionBase &e)
-          {
-            throw InputError("mesh file '" + file_name + "' cannot be read: " +
-                             one_line_message(e));
-          }
+        if (version == 0)
+          fail("no $MeshFormat section: not a Gmsh file");
+        return finish();
       }
-      if (!tria.all_reference_cells_are_hyper_cube())
-        throw InputError("mesh file '" + file_name +
-                         "' has cells other than hexahedra (Anvil meshes hexahedra only: "
-                         "Gmsh: Recombine and Mesh.SubdivisionAlgorithm = 2, or "
-                         "transfinite volumes)");
 
-      Contents                  out;
-      std::vector<unsigned int> index(tria.n_vertices(), 0);
-      for (unsigned int v = 0; v < tria.n_vertices(); ++v)
-        if (tria.get_used_vertices()[v])
+    private:
+      std::string                 file;
+      std::ifstream               in;
+      double                      bytes  = 0;
+      unsigned int                number = 0;
+      double                      version = 0;
+      std::map<std::pair<int, int>, std::string> physical_names; // (dim, tag)
+      std::map<std::pair<int, int>, std::vector<int>> entity_physicals; // (dim, entity)
+      std::map<long, unsigned int> vertex_of;                           // node tag
+      std::vector<dealii::Point<3>> vertices;
+      std::vector<std::array<long, 8>> hexes;
+      std::vector<std::vector<int>>    hex_physicals;
+      std::vector<long>                hex_tags;
+      std::vector<std::array<long, 4>> quads;
+      std::vector<std::vector<int>>    quad_physicals;
+
+      [[noreturn]] void fail(const std::string &what) const
+      {
+        throw InputError("mesh file '" + file + "', line " + std::to_string(number) + ": " + what);
+      }
+
+      bool next_line(std::string &line)
+      {
+        if (!std::getline(in, line))
+          return false;
+        ++number;
+        line = trim(line);
+        return true;
+      }
+
+      std::istringstream data_line(const char *what)
+      {
+        std::string line;
+        if (!next_line(line))
+          fail(std::string("the file ends inside ") + what);
+        return std::istringstream(line);
+      }
+
+      template <typename T>
+      T get(std::istringstream &s, const char *what)
+      {
+        T value;
+        if (!(s >> value))
+          fail(std::string("expected ") + what);
+        if constexpr (std::is_floating_point_v<T>)
+          if (!std::isfinite(value))
+            fail(std::string(what) + " is not a finite number");
+        return value;
+      }
+
+      // A count read from the file: at most what the file's size allows.
+      long count(std::istringstream &s, const char *what)
+      {
+        const long n = get<long>(s, what);
+        if (n < 0 || double(n) > bytes)
+          fail(std::string(what) + " = " + std::to_string(n) +
+               " cannot be right for a file of this size");
+        return n;
+      }
+
+      void end_of(const std::string &section)
+      {
+        std::string line;
+        if (!next_line(line) || line != "$End" + section)
+          fail("expected $End" + section);
+      }
+
+      void skip_section(const std::string &start)
+      {
+        std::string line;
+        const std::string end = "$End" + start.substr(1);
+        while (next_line(line))
+          if (line == end)
+            return;
+        fail("the file ends inside " + start);
+      }
+
+      void read_format()
+      {
+        auto s      = data_line("$MeshFormat");
+        version     = get<double>(s, "a format version");
+        const int t = get<int>(s, "the file type");
+        if (t == 1)
+          fail("a binary Gmsh file: Anvil reads ASCII .msh (format 2.2 or 4.1; Gmsh: "
+               "-format msh41 without -bin, or Mesh.Binary = 0)");
+        if (t != 0 || !(version == 2.2 || version == 4.1))
+          fail("format " + std::to_string(version).substr(0, 3) + ", type " + std::to_string(t) +
+               " (allowed: ASCII 2.2 or 4.1)");
+        end_of("MeshFormat");
+      }
+
+      void read_names()
+      {
+        auto       s = data_line("$PhysicalNames");
+        const long n = count(s, "the number of names");
+        for (long i = 0; i < n; ++i)
           {
-            index[v] = out.vertices.size();
-            out.vertices.push_back(tria.get_vertices()[v]);
+            std::string line;
+            if (!next_line(line))
+              fail("the file ends inside $PhysicalNames");
+            std::istringstream entry(line);
+            const int          dim = get<int>(entry, "a dimension");
+            const int          tag = get<int>(entry, "a physical tag");
+            const auto q1 = line.find('"'), q2 = line.rfind('"');
+            if (dim < 0 || dim > 3 || q1 == std::string::npos || q2 <= q1)
+              fail("'" + printable_excerpt(line) + "' is not 'dimension tag \"name\"'");
+            physical_names[{dim, tag}] = key(line.substr(q1 + 1, q2 - q1 - 1));
           }
-      std::map<unsigned int, std::set<unsigned int>> surface_nodes;
-      for (const auto &cell : tria.active_cell_iterators())
-        {
-          const unsigned int          c = out.cells.size();
-          std::array<unsigned int, 8> v;
-          for (unsigned int i = 0; i < 8; ++i)
-            v[i] = index[cell->vertex_index(i)];
-          out.cells.push_back(v);
-          const unsigned int tag  = cell->material_id();
-          const auto         name = physical_names.find({3, static_cast<int>(tag)});
-          const std::string  region =
-            name != physical_names.end() ? name->second : std::to_string(tag);
-          if (out.cell_sets.count(region) == 0)
-            out.regions.push_back(region);
-          out.cell_sets[std::to_string(tag)].push_back(c);
-          if (name != physical_names.end())
-            out.cell_sets[name->second].push_back(c);
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() != 0)
-              {
-                Contents::Face face;
-                face.cell        = c;
-                face.boundary_id = cell->face(f)->boundary_id();
-                for (unsigned int i = 0; i < 4; ++i)
-                  {
-                    face.vertices[i] = index[cell->face(f)->vertex_index(i)];
-                    surface_nodes[face.boundary_id].insert(face.vertices[i]);
-                  }
-                out.faces.push_back(face);
-              }
-        }
-      for (const auto &s : surface_nodes)
-        {
-          if (s.first > 255)
-            throw InputError("mesh file '" + file_name + "': physical surface " +
-                             std::to_string(s.first) +
-                             " is not a boundary id Anvil can use (allowed: 0 ... 255)");
-          std::vector<std::string> names = {std::to_string(s.first)};
-          const auto name = physical_names.find({2, static_cast<int>(s.first)});
-          if (name != physical_names.end())
-            names.push_back(name->second);
-          for (const auto &n : names)
+        end_of("PhysicalNames");
+      }
+
+      void read_entities()
+      {
+        if (version < 4)
+          fail("$Entities in a format 2.2 file");
+        auto       s = data_line("$Entities");
+        long       n[4];
+        for (auto &k : n)
+          k = count(s, "an entity count");
+        for (int dim = 0; dim < 4; ++dim)
+          for (long i = 0; i < n[dim]; ++i)
             {
-              out.surfaces[n] = s.first;
-              out.node_sets[n].assign(s.second.begin(), s.second.end());
+              auto      e   = data_line("$Entities");
+              const int tag = get<int>(e, "an entity tag");
+              for (int k = 0; k < (dim == 0 ? 3 : 6); ++k)
+                get<double>(e, "a coordinate of the entity's box");
+              const long np = count(e, "the number of physical tags");
+              auto      &physicals = entity_physicals[{dim, tag}];
+              for (long k = 0; k < np; ++k)
+                physicals.push_back(get<int>(e, "a physical tag"));
             }
-        }
-      return out;
-    }
+        end_of("Entities");
+      }
+
+      void add_node(const long tag, const dealii::Point<3> &x)
+      {
+        if (!vertex_of.emplace(tag, vertices.size()).second)
+          fail("node " + std::to_string(tag) + " appears twice");
+        vertices.push_back(x);
+      }
+
+      void read_nodes()
+      {
+        auto s = data_line("$Nodes");
+        if (version < 4)
+          {
+            const long n = count(s, "the number of nodes");
+            for (long i = 0; i < n; ++i)
+              {
+                auto       line = data_line("$Nodes");
+                const long tag  = get<long>(line, "a node tag");
+                dealii::Point<3> x;
+                for (unsigned int d = 0; d < 3; ++d)
+                  x[d] = get<double>(line, "a coordinate");
+                add_node(tag, x);
+              }
+          }
+        else
+          {
+            const long blocks = count(s, "the number of node blocks");
+            count(s, "the number of nodes");
+            for (long b = 0; b < blocks; ++b)
+              {
+                auto       head = data_line("$Nodes");
+                get<int>(head, "an entity dimension");
+                get<int>(head, "an entity tag");
+                const int  parametric = get<int>(head, "the parametric flag");
+                const long n          = count(head, "the number of nodes in a block");
+                if (parametric != 0)
+                  fail("parametric nodes (Anvil reads Gmsh's default, without)");
+                std::vector<long> tags(n);
+                for (long i = 0; i < n; ++i)
+                  {
+                    auto line = data_line("$Nodes");
+                    tags[i]   = get<long>(line, "a node tag");
+                  }
+                for (long i = 0; i < n; ++i)
+                  {
+                    auto             line = data_line("$Nodes");
+                    dealii::Point<3> x;
+                    for (unsigned int d = 0; d < 3; ++d)
+                      x[d] = get<double>(line, "a coordinate");
+                    add_node(tags[i], x);
+                  }
+              }
+          }
+        end_of("Nodes");
+      }
+
+      void add_element(const int type, std::istringstream &line, const long tag,
+                       const std::vector<int> &physicals)
+      {
+        if (type == 5)
+          {
+            std::array<long, 8> v;
+            for (auto &x : v)
+              x = get<long>(line, "a node tag of a hexahedron");
+            hexes.push_back(v);
+            hex_physicals.push_back(physicals);
+            hex_tags.push_back(tag);
+          }
+        else if (type == 3)
+          {
+            std::array<long, 4> v;
+            for (auto &x : v)
+              x = get<long>(line, "a node tag of a quadrangle");
+            quads.push_back(v);
+            quad_physicals.push_back(physicals);
+          }
+        else if (type == 4 || type == 6 || type == 7 || (type >= 11 && type <= 14) ||
+                 (type >= 17 && type <= 19) || type == 29 || type == 30)
+          fail("element " + std::to_string(tag) + " of type " + std::to_string(type) +
+               " is a volume element other than the 8-node hexahedron (Anvil meshes "
+               "hexahedra only: Gmsh: Recombine and Mesh.SubdivisionAlgorithm = 2, or "
+               "transfinite volumes)");
+      }
+
+      void read_elements()
+      {
+        auto s = data_line("$Elements");
+        if (version < 4)
+          {
+            const long n = count(s, "the number of elements");
+            for (long i = 0; i < n; ++i)
+              {
+                auto       line  = data_line("$Elements");
+                const long tag   = get<long>(line, "an element tag");
+                const int  type  = get<int>(line, "an element type");
+                const long ntags = count(line, "the number of tags");
+                std::vector<int> physicals;
+                for (long k = 0; k < ntags; ++k)
+                  {
+                    const int t = get<int>(line, "a tag");
+                    if (k == 0 && t != 0)
+                      physicals.push_back(t);
+                  }
+                add_element(type, line, tag, physicals);
+              }
+          }
+        else
+          {
+            const long blocks = count(s, "the number of element blocks");
+            count(s, "the number of elements");
+            for (long b = 0; b < blocks; ++b)
+              {
+                auto       head   = data_line("$Elements");
+                const int  dim    = get<int>(head, "an entity dimension");
+                const int  entity = get<int>(head, "an entity tag");
+                const int  type   = get<int>(head, "an element type");
+                const long n      = count(head, "the number of elements in a block");
+                const auto it     = entity_physicals.find({dim, entity});
+                const std::vector<int> physicals =
+                  it == entity_physicals.end() ? std::vector<int>() : it->second;
+                for (long i = 0; i < n; ++i)
+                  {
+                    auto       line = data_line("$Elements");
+                    const long tag  = get<long>(line, "an element tag");
+                    add_element(type, line, tag, physicals);
+                  }
+              }
+          }
+        end_of("Elements");
+      }
+
+      unsigned int vertex(const long tag, const long element) const
+      {
+        const auto it = vertex_of.find(tag);
+        if (it == vertex_of.end())
+          throw InputError("mesh file '" + file + "': element " + std::to_string(element) +
+                           " names node " + std::to_string(tag) + ", which $Nodes does not define");
+        return it->second;
+      }
+
+      Contents finish()
+      {
+        Contents out;
+        out.vertices = vertices;
+        if (hexes.empty())
+          throw InputError("mesh file '" + file + "' has no hexahedra (element type 5)");
+        std::map<std::array<unsigned int, 4>, std::pair<unsigned int, std::array<unsigned int, 4>>>
+          face_of;
+        for (unsigned int c = 0; c < hexes.size(); ++c)
+          {
+            std::array<unsigned int, 8> g;
+            for (unsigned int i = 0; i < 8; ++i)
+              g[i] = vertex(hexes[c][i], hex_tags[c]);
+            // Gmsh's order is ABAQUS's: deal.II's swaps 2 <-> 3, 6 <-> 7.
+            out.cells.push_back({{g[0], g[1], g[3], g[2], g[4], g[5], g[7], g[6]}});
+            out.labels.push_back(hex_tags[c]);
+            std::vector<int> tags = hex_physicals[c];
+            if (tags.empty())
+              tags.push_back(0);
+            for (const int tag : tags)
+              {
+                const auto        name = physical_names.find({3, tag});
+                const std::string region =
+                  name != physical_names.end() ? name->second : std::to_string(tag);
+                if (out.cell_sets.count(region) == 0)
+                  out.regions.push_back(region);
+                out.cell_sets[std::to_string(tag)].push_back(c);
+                if (name != physical_names.end())
+                  out.cell_sets[name->second].push_back(c);
+              }
+            for (const auto &f : abaqus_face)
+              {
+                std::array<unsigned int, 4> v = {{g[f[0]], g[f[1]], g[f[2]], g[f[3]]}}, k = v;
+                std::sort(k.begin(), k.end());
+                face_of[k] = {c, v};
+              }
+          }
+        std::map<unsigned int, std::set<unsigned int>> surface_nodes;
+        for (unsigned int q = 0; q < quads.size(); ++q)
+          {
+            std::array<unsigned int, 4> k;
+            for (unsigned int i = 0; i < 4; ++i)
+              k[i] = vertex(quads[q][i], -1);
+            std::sort(k.begin(), k.end());
+            const auto face = face_of.find(k);
+            for (const int tag : quad_physicals[q])
+              {
+                if (tag <= 0 || tag > 255)
+                  throw InputError("mesh file '" + file + "': physical surface " +
+                                   std::to_string(tag) +
+                                   " is not a boundary id Anvil can use (allowed: 1 ... 255)");
+                surface_nodes[tag].insert(k.begin(), k.end());
+                if (face != face_of.end())
+                  out.faces.push_back({face->second.first, face->second.second,
+                                       static_cast<unsigned int>(tag)});
+              }
+          }
+        for (const auto &s : surface_nodes)
+          {
+            std::vector<std::string> names = {std::to_string(s.first)};
+            const auto name = physical_names.find({2, static_cast<int>(s.first)});
+            if (name != physical_names.end())
+              names.push_back(name->second);
+            for (const auto &n : names)
+              {
+                out.surfaces[n] = s.first;
+                out.node_sets[n].assign(s.second.begin(), s.second.end());
+              }
+          }
+        return out;
+      }
+    };
   } // namespace
 
 
@@ -843,7 +1092,7 @@ namespace anvil::MeshFile
     if (ext == "INP")
       return read_abaqus(file_name);
     if (ext == "MSH")
-      return read_gmsh(file_name);
+      return GmshReader(file_name).read();
     throw InputError("mesh file '" + file_name + "': unknown extension (allowed: .msh, .inp)");
   }
 } // namespace anvil::MeshFile

@@ -262,4 +262,40 @@ lines = [l for l in err.strip().splitlines() if l]
 c.check_true("element type C3D4: exit 2, one line naming it and its line (6)",
              code == 2 and len(lines) == 1 and "C3D4" in lines[0] and "line 6" in lines[0],
              err.strip())
+
+# One element written mirrored (its top face first): turned, and the block
+# carries rho V v0; one flat (a node on its neighbour): refused by label.
+cube = "*Node\n" + "".join(f"{i + 1}, {x}, {y}, {z}\n" for i, (x, y, z) in enumerate(
+    [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]))
+for name, element, ok in (("mirrored", "7, 5, 6, 7, 8, 1, 2, 3, 4", True),
+                          ("flat", "7, 1, 2, 3, 4, 1, 2, 3, 4", False)):
+    with open(os.path.join(args.work_dir, f"{name}.inp"), "w") as f:
+        f.write(cube + "*Element, type=C3D8\n" + element + "\n")
+    prm = write_scene(os.path.join(args.work_dir, f"{name}.prm"), text=f"""set Bodies = b
+subsection Body b
+  subsection Mesh
+    set Source = file
+    set File name = {name}.inp
+  end
+  subsection Material
+    subsection elastic
+      set Density = {rho}
+    end
+  end
+  set Initial velocity = {v0}, 0, 0
+end
+subsection Simulation
+  set End time = 1e-6
+  set Print wall times = false
+end
+""")
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+    if ok and c.check_true("mirrored element: turned, the run exits 0", code == 0, err.strip()):
+        p = read_csv(os.path.join(args.work_dir, "output/mirrored/momentum.csv"))
+        c.check("mirrored element: momentum rho V v0 of the 1 m^3 cube [kg m/s]", p["px"][-1],
+                rho * v0, 1e-12, relative=True)
+    if not ok:
+        lines = [l for l in err.strip().splitlines() if l]
+        c.check_true("flat element: exit 2, one line naming element 7",
+                     code == 2 and len(lines) == 1 and "element 7 " in lines[0], err.strip())
 c.finish()

@@ -9,6 +9,13 @@ paste (empty, signs, 1e308, 1e400, 1e-320, nan, inf, '1,2', lists, words,
 'end' removed, the file cut at a random byte, a scene that includes
 itself.
 
+Also 50 mutated copies of an Abaqus/CAE-layout deck (parts, an instance
+with translation and rotation, sets, a surface, a step) and 32 of a Gmsh
+file (tests/input/two_blocks.geo; when gmsh is installed) through
+'--check' of a scene that takes a region, a surface or node set and a
+probe from them: a value replaced, a line deleted or doubled, the file cut.
+The cases run two at a time.
+
 Checked for every case: the exit status is 0 or 2 for --check (0, 2 or 3
 for a run), never a signal, an abort or a hang (30 s); every failure
 prints exactly one line on stderr, starting 'anvil: error:' and at most
@@ -20,12 +27,13 @@ import os
 import random
 import shutil
 import subprocess
+from concurrent.futures import ThreadPoolExecutor
 from anvil_test import Checker, arguments
 
 args = arguments()
 c = Checker("fuzz: mutated scenes give exit 0 or one error line and exit 2")
 rng = random.Random(20261124)
-cases_check, cases_run = 120, 8
+cases_check, cases_run = 140, 8
 
 source = os.path.join(args.source_dir, "prm")
 scenes = sorted(os.path.relpath(p, source) for p in glob.glob(os.path.join(source, "*", "*.prm")))
@@ -69,9 +77,103 @@ def run(cmd, cwd):
     return r.returncode, r.stderr
 
 
+# Mesh files as they come (an Abaqus/CAE-layout deck; a Gmsh file when
+# gmsh is installed), mutated line by line like the scenes.
+DECK = """*Heading
+*Part, name=Bar
+*Node
+ 501, 0., 0., 0.
+ 502, 10., 0., 0.
+ 503, 10., 10., 0.
+ 504, 0., 10., 0.
+ 505, 0., 0., 10.
+ 506, 10., 0., 10.
+ 507, 10., 10., 10.
+ 508, 0., 10., 10.
+*Element, type=C3D8R
+1001, 501, 502, 503, 504, 505, 506, 507, 508
+*Elset, elset=All, generate
+ 1001, 1001, 1
+*Nset, nset=Tip
+ 507,
+*Elset, elset=_Front_S6, internal
+ 1001,
+*Surface, type=ELEMENT, name=Front
+_Front_S6, S6
+*End Part
+*Assembly, name=Assembly
+*Instance, name=Bar-1, part=Bar
+  5., 0., 0.
+  5., 0., 0., 5., 0., 1., 90.
+*End Instance
+*Nset, nset=Fixed, instance=Bar-1
+ 501, 504, 505, 508
+*End Assembly
+*Material, name=Steel
+*Elastic
+200000., 0.3
+*Step, name=Step-1
+*Dynamic, Explicit
+, 0.001
+*End Step
+"""
+MESH_SCENE = """set Bodies = bar
+subsection Body bar
+  subsection Mesh
+    set Source = file
+    set File name = {mesh}
+    set Region = {region}
+    set Scale = 0.001
+  end
+end
+set Boundary conditions = support
+subsection Boundary condition support
+  set Body = bar
+  set Selection = {selection}
+  set {names_entry} = {names}
+end
+set Probes = tip
+subsection Probe tip
+  set Body = bar
+  set Node set = {node_set}
+end
+"""
+msh_text = None
+gmsh = shutil.which("gmsh")
+if gmsh:
+    geo = os.path.join(args.source_dir, "tests", "input", "two_blocks.geo")
+    target = os.path.join(args.work_dir, "blocks.msh")
+    if subprocess.run([gmsh, "-3", "-format", "msh41", geo, "-o", target],
+                      capture_output=True).returncode == 0:
+        with open(target, encoding="latin-1") as f:
+            msh_text = f.read()
+cases_inp, cases_msh = 50, 32 if msh_text else 0
+
+
+def mutate_mesh(lines):
+    kind = rng.randrange(5)
+    if kind <= 1 and lines:
+        i = rng.randrange(len(lines))
+        tokens = lines[i].rstrip("\n").replace(",", " , ").split()
+        if tokens:
+            tokens[rng.randrange(len(tokens))] = rng.choice(values[:-4] + ["-5", "99999", "S9"])
+        lines[i] = " ".join(tokens).replace(" , ", ", ") + "\n"
+        return "mesh value", lines
+    if kind == 2 and lines:
+        del lines[rng.randrange(len(lines))]
+        return "mesh line deleted", lines
+    if kind == 3 and lines:
+        i = rng.randrange(len(lines))
+        lines.insert(i, lines[i])
+        return "mesh line doubled", lines
+    text = "".join(lines)
+    return "mesh cut", [text[:rng.randrange(max(1, len(text)))]]
+
+
+# The cases, drawn in a fixed order, then run two at a time.
 work = os.path.join(args.work_dir, "cases")
 shutil.rmtree(work, ignore_errors=True)
-bad, refused, passed, ran = [], {}, 0, 0
+cases = []
 for n in range(cases_check + cases_run):
     case = os.path.join(work, str(n))
     shutil.copytree(source, case)
@@ -86,7 +188,40 @@ for n in range(cases_check + cases_run):
     cmd = [args.anvil, "--check", path] if checking else \
         [args.anvil, path, "--set", "Simulation/End time=2e-6",
          "--set", "Simulation/Overwrite existing output=true"]
-    code, err = run(cmd, os.path.dirname(path))
+    cases.append((case, name, kind, checking, cmd))
+for n in range(cases_inp + cases_msh):
+    case = os.path.join(work, f"mesh{n}")
+    os.makedirs(case)
+    inp = n < cases_inp
+    mesh = "deck.inp" if inp else "blocks.msh"
+    kind, lines = mutate_mesh((DECK if inp else msh_text).splitlines(keepends=True))
+    with open(os.path.join(case, mesh), "w", encoding="latin-1") as f:
+        f.writelines(lines)
+    scene = MESH_SCENE.format(mesh=mesh, region="Bar-1" if inp else "Striker",
+                              selection="surface" if n % 2 else "node set",
+                              names_entry="Surfaces" if n % 2 else "Node sets",
+                              names=("Front" if n % 2 else "Fixed") if inp else "7",
+                              node_set="Bar-1.Tip" if inp else "7")
+    if not inp:
+        scene = scene.replace("set Probes = tip", "set Probes =")
+        scene = scene[:scene.index("subsection Probe tip")]
+    path = os.path.join(case, "scene.prm")
+    with open(path, "w") as f:
+        f.write(scene)
+    cases.append((case, mesh, kind, True, [args.anvil, "--check", path]))
+
+
+def execute(case):
+    directory, name, kind, checking, cmd = case
+    code, err = run(cmd, directory if name.endswith((".inp", ".msh")) else
+                    os.path.dirname(cmd[-1] if checking else cmd[1]))
+    return case, code, err
+
+
+bad, refused, passed, ran = [], {}, 0, 0
+with ThreadPoolExecutor(max_workers=2) as pool:
+    results = list(pool.map(execute, cases))
+for (directory, name, kind, checking, cmd), code, err in results:
     err_lines = [l for l in err.decode("latin-1").splitlines() if l.strip()]
     allowed = (0, 2) if checking else (0, 2, 3)
     one_line = code == 0 or (len(err_lines) == 1 and err_lines[0].startswith("anvil: error:")
@@ -100,10 +235,12 @@ for n in range(cases_check + cases_run):
     else:
         refused.setdefault(kind, err_lines[0][:200])
     if code in allowed and one_line:
-        shutil.rmtree(case, ignore_errors=True)
+        shutil.rmtree(directory, ignore_errors=True)
 
-print(f"{cases_check} mutated scenes checked and {cases_run} run for 2e-6 s: {passed} passed, "
-      f"{cases_check + cases_run - passed - len(bad)} refused with one line, {len(bad)} bad")
+total = len(cases)
+print(f"{total} cases: {cases_check} mutated scenes checked and {cases_run} run for 2e-6 s, "
+      f"{cases_inp} mutated ABAQUS decks and {cases_msh} mutated Gmsh files checked: {passed} passed, "
+      f"{total - passed - len(bad)} refused with one line, {len(bad)} bad")
 for kind, line in sorted(refused.items()):
     print(f"  refused ({kind}): {line}")
 for b in bad:

@@ -25,6 +25,9 @@ namespace anvil::MeshFile
     std::vector<dealii::Point<3>> vertices;
     /** Hexahedra, their vertices in deal.II's (lexicographic) order. */
     std::vector<std::array<unsigned int, 8>> cells;
+    /** The file's label of each cell (ABAQUS element label, Gmsh element
+        tag), for messages. */
+    std::vector<long> labels;
 
     /** A face with a boundary id: its cell and its four vertices. */
     struct Face
