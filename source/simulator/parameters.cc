@@ -343,14 +343,20 @@ namespace anvil
                         "The undamaged member's capacity: summary.csv adds "
                         "damage_index = 1 - axial_capacity_N / this (Shi, Hao and Li "
                         "2008); 0: none. Units: N.");
+      // The test suite runs hundreds of scenes: it makes 'false' the
+      // default through the environment (a scene's own 'set Plots' wins).
+      const char *plots_default = std::getenv("ANVIL_DEFAULT_PLOTS");
       prm.declare_entry("Plots",
-                        "false",
+                        plots_default && std::string(plots_default) == "false" ? "false" :
+                                                                                 "true",
                         Patterns::Bool(),
                         "At the end of the run, write PNG plots beside the CSV "
                         "histories (energies, probes, contact forces, support "
-                        "reactions, rigid bodies) with Python's matplotlib "
-                        "(Debian: python3-matplotlib); without it the run says "
-                        "the plots were skipped.");
+                        "reactions, rigid bodies; a plot per file, with units) "
+                        "with Python's matplotlib (Debian: python3-matplotlib); "
+                        "without it the run says the plots were skipped. The "
+                        "environment variable ANVIL_DEFAULT_PLOTS=false makes "
+                        "false the default (the test suite does).");
       prm.declare_entry("Print wall times",
                         "true",
                         Patterns::Bool(),

@@ -7,6 +7,7 @@ run is, whole at every moment (written aside, then renamed).
   keys of the finished file);
 - at the end: 'state: finished', fraction 1, the step count and the final
   energies of summary.csv;
+- a run makes its PNG plots by default (one per history file);
 - a run stopped by a numerical failure: 'state: stopped' and the message;
 - the progress lines follow the wall clock: their count is printed against
   the wall time over the interval (not asserted: timing), and at least the
@@ -39,8 +40,11 @@ subsection Simulation
 end
 """)
 status_file = os.path.join(args.work_dir, "output/follow/status")
+# As a user runs it: without the suite's ANVIL_DEFAULT_PLOTS=false, so the
+# run also makes its plots.
+user_env = {k: v for k, v in os.environ.items() if k != "ANVIL_DEFAULT_PLOTS"}
 run = subprocess.Popen([args.anvil, prm], cwd=args.work_dir, stdout=subprocess.PIPE,
-                       stderr=subprocess.PIPE, text=True)
+                       stderr=subprocess.PIPE, text=True, env=user_env)
 seen, malformed = [], 0
 while run.poll() is None:
     try:
@@ -73,6 +77,12 @@ if c.check_true("status at the end: finished", final is not None and final["stat
     if running:
         c.check_true("status while running has every key of the finished one but the message",
                      set(final) <= set(running[-1]) | {"wall_time_left_s"})
+pngs = ("energy.png", "probe_front.png", "probe_rear.png", "contact_impact.png", "rigid_wall.png")
+listed = open(os.path.join(args.work_dir, "output/follow/anvil_files.txt")).read().split()
+c.check_true("a run makes its plots by default, one per history file, listed as its own",
+             all(os.path.getsize(os.path.join(args.work_dir, "output/follow", p)) > 1000 and
+                 p in listed for p in pngs),
+             next((l.strip() for l in out.splitlines() if "plots" in l), "no plots line"))
 lines = [l for l in out.splitlines() if l.strip().startswith("step ")]
 wall = summary["wall_time_s"]
 print(f"  progress lines: {len(lines)} in {wall:.2f} s of wall time at 0.2 s intervals "
