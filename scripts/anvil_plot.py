@@ -44,7 +44,8 @@ def main(directory):
     made = []
     e = read(os.path.join(directory, "energy.csv"))
     if e:
-        names = ["kinetic", "internal", "hourglass", "viscous", "contact", "friction", "eroded", "bond",
+        names = ["kinetic", "internal", "hourglass", "viscous", "damping", "contact", "friction", "eroded",
+                 "removed", "bond",
                  "external_work", "total"]
         figure(os.path.join(directory, "energy.png"), "energies", "energy (J)",
                [(n, e["time"], e[n]) for n in names if n in e and max(map(abs, e[n])) > 0])

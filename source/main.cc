@@ -178,13 +178,16 @@ int main(int argc, char **argv)
             }
           return 0;
         }
-      anvil::Simulator simulator(file, MPI_COMM_WORLD, overrides);
-      if (check_only)
-        simulator.check();
-      else if (cost)
-        simulator.print_cost();
+      if (cost || !resume_from.empty())
+        {
+          anvil::Simulator simulator(file, MPI_COMM_WORLD, overrides);
+          if (cost)
+            simulator.print_cost();
+          else
+            simulator.run(false, resume_from);
+        }
       else
-        simulator.run(resume, resume_from);
+        anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume, check_only);
     }
   catch (const anvil::InputError &e)
     {

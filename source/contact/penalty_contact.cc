@@ -209,20 +209,27 @@ namespace anvil::Contact
     // The trees are rebuilt from the positions they were built with (the
     // tree over surface s serves the pass with s as master), so the resumed
     // run rebuilds them at the same steps and finds the same candidates.
+    // (A tree is made at the first search: a run resumed before its first
+    // step has none yet, so whether it exists is part of the state.)
     for (unsigned int s = 0; s < 2; ++s)
-      if (search[s])
-        {
-          ar &search[s]->built &search[s]->safety;
-          if (ar.is_loading() && !search[s]->built.empty())
-            {
-              const auto        &x = search[s]->built;
-              std::vector<Value> values;
-              values.reserve(surface[s].nodes.size());
-              for (const unsigned int i : surface[s].nodes)
-                values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
-              search[s]->tree = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
-            }
-        }
+      {
+        bool exists = search[s] != nullptr;
+        ar  &exists;
+        if (!exists)
+          continue;
+        if (ar.is_loading() && !search[s])
+          search[s] = std::make_shared<SearchTree>();
+        ar &search[s]->built &search[s]->safety;
+        if (ar.is_loading() && !search[s]->built.empty())
+          {
+            const auto        &x = search[s]->built;
+            std::vector<Value> values;
+            values.reserve(surface[s].nodes.size());
+            for (const unsigned int i : surface[s].nodes)
+              values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+            search[s]->tree = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
+          }
+      }
   }
 
 

@@ -50,7 +50,7 @@ namespace anvil
     ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
       &step_change_steps &contact_frequency_squared &current_dt &step_number &time &inverted_cell
         &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &pvd_records &output_count
-          &summary &loop &peak_bc_reaction;
+          &summary &loop &peak_bc_reaction &stage_start &damping_force_old;
     // (The prescribed velocities are the scene's, not state: a new stage may change them.)
     ar &constrained_reaction &constrained_velocity_old &bc_reaction
       &rigid_shape_force &rigid_shape_torque &contact_results &contact_positions &contact_velocities
@@ -63,6 +63,51 @@ namespace anvil
       b.rigid.serialize(ar);
     for (auto &t : rebars)
       t.serialize(ar);
+  }
+
+
+  // A stage that takes bodies out (the hammer once the impact is over):
+  // what they held leaves the balance as 'removed' energy, booked once, at
+  // the start of the stage.
+  void Simulator::remove_inactive_bodies()
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (body_inactive[b])
+        {
+          auto &m = bodies[b].rigid;
+          const double kinetic =
+            0.5 * (m.mass * (m.velocity * m.velocity) +
+                   m.angular_velocity * (m.reference_inertia * m.angular_velocity));
+          energies.removed += kinetic;
+          energies.kinetic -= kinetic;
+          m.velocity         = 0;
+          m.angular_velocity = 0;
+          m.angular_momentum = 0;
+          m.kinetic_energy   = 0;
+          for (const auto &node : rigid_nodes[b])
+            for (unsigned int d = 0; d < 3; ++d)
+              velocity.local_element(node.first + d) = 0;
+          if (kinetic > 0)
+            pcout << "  body '" << bodies[b].name << "' taken out of the analysis with " << kinetic
+                  << " J of kinetic energy" << std::endl;
+        }
+    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
+      if (pair_inactive(p))
+        {
+          energies.removed += contact_results[p].energy;
+          contact_results[p] = Contact::ContactResult();
+        }
+    velocity.update_ghost_values();
+  }
+
+
+  bool Simulator::pair_inactive(const unsigned int p) const
+  {
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (body_inactive[b] &&
+          (bodies[b].name == contact_pairs[p].first_body || bodies[b].name == contact_pairs[p].second_body))
+        return true;
+    return false;
   }
 
 
@@ -201,9 +246,14 @@ namespace anvil
     velocity.update_ghost_values();
     mass.update_ghost_values();
     if (new_stage)
+      stage_start = time;
+    if (duration > 0)
+      end_time = stage_start + duration;
+    if (new_stage)
       {
         // A stage of its own: its histories, frames and figures start
         // here; the energies (and the balance) continue.
+        remove_inactive_bodies();
         summary = Summary();
         std::fill(peak_bc_reaction.begin(), peak_bc_reaction.end(), 0.);
         pvd_records.clear();
@@ -214,7 +264,7 @@ namespace anvil
         loop.quiet_end     = false;
         last_flush         = std::chrono::steady_clock::now();
         pcout << "  a new stage from the checkpoint in " << directory << " at t = " << time << " s, step "
-              << step_number << std::endl;
+              << step_number << "; it ends at t = " << end_time << " s" << std::endl;
         output_results(time, "solution");
         return;
       }

@@ -26,6 +26,10 @@ namespace anvil
   void Simulator::write_history(const double t, const double dt)
   {
     const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    // The mass damping's force of this step (part of a^n), by local index.
+    auto damping_force = [&](const unsigned int i) {
+      return mass_damping > 0 && i < damping_force_old.size() ? damping_force_old[i] : 0.;
+    };
 
     // Per probe: displacement, velocity at time n, and the Cauchy stress
     // of its element (at time n: positions and stresses are those of x^n).
@@ -38,7 +42,9 @@ namespace anvil
             {
               const auto g                       = probes[p].x_dof + d;
               probe_values[n_values * p + d]     = position(g) - reference_position(g);
-              probe_values[n_values * p + 3 + d] = velocity(g) - 0.5 * dt * force(g) / mass(g);
+              probe_values[n_values * p + 3 + d] =
+                velocity(g) - 0.5 * dt * (force(g) + damping_force(velocity.get_partitioner()->global_to_local(g))) /
+                                mass(g);
             }
           if (probes[p].group >= 0)
             element_groups[probes[p].group].cauchy_stress(probes[p].element,
@@ -55,7 +61,8 @@ namespace anvil
     for (unsigned int i = 0; i < velocity.locally_owned_size(); ++i)
       if (rigid_dof.empty() || !rigid_dof[i])
         momentum[3 * dof_body[i] + dof_component[i]] +=
-          mass.local_element(i) * velocity.local_element(i) - 0.5 * dt * force.local_element(i);
+          mass.local_element(i) * velocity.local_element(i) -
+          0.5 * dt * (force.local_element(i) + damping_force(i));
     Utilities::MPI::sum(momentum, mpi_communicator, momentum);
     // Bond-slip bars (replicated): their momentum with the host body's.
     for (unsigned int r = 0; r < rebars.size(); ++r)
@@ -118,7 +125,7 @@ namespace anvil
         record_output("energy.csv");
         record_output("momentum.csv");
         energy_file.open(output_directory + "/energy.csv");
-        energy_file << "time,kinetic,internal,hourglass,viscous,contact,friction,eroded,bond,"
+        energy_file << "time,kinetic,internal,hourglass,viscous,damping,contact,friction,eroded,removed,bond,"
                        "step_change,external_work,total,balance_error\n";
         momentum_file.open(output_directory + "/momentum.csv");
         momentum_file << "time";
@@ -144,8 +151,8 @@ namespace anvil
       }
     energy_file << std::setprecision(12) << t << ',' << energies.kinetic << ','
                 << energies.internal << ',' << energies.hourglass << ',' << energies.viscous << ','
-                << energies.contact << ',' << energies.friction << ','
-                << energies.eroded << ',' << energies.bond << ',' << energies.step_change << ','
+                << energies.damping << ',' << energies.contact << ',' << energies.friction << ','
+                << energies.eroded << ',' << energies.removed << ',' << energies.bond << ',' << energies.step_change << ','
                 << energies.external_work << ',' << energies.total() << ','
                 << balance_error << '\n';
     momentum_file << std::setprecision(15) << t;

@@ -79,6 +79,14 @@ namespace anvil
                         Patterns::List(Patterns::Anything()),
                         "Names of reinforcement layouts; each has a subsection "
                         "'Rebar NAME' and writes rebar_NAME.csv.");
+      prm.declare_entry("Stages",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Names of the stages that follow the scene's own run, in "
+                        "order, each on the state the one before left; each has a "
+                        "subsection 'Stage NAME' and writes its results to "
+                        "OUTPUT DIRECTORY/NAME/NAME-OF-STAGE/ (doc/user_guide.md, "
+                        "\"Stages\").");
     }
 
     // @sect3{Include files}
@@ -232,7 +240,8 @@ namespace anvil
                                      const std::vector<std::string> &bc_names,
                                      const std::vector<std::string> &pair_names,
                                      const std::vector<std::string> &probe_names,
-                                     const std::vector<std::string> &rebar_names)
+                                     const std::vector<std::string> &rebar_names,
+                                     const std::vector<std::string> &stage_names)
   {
     using namespace dealii;
     declare_lists(prm);
@@ -282,6 +291,39 @@ namespace anvil
                         "0.01",
                         Patterns::Double(0.),
                         "How long the end criterion must hold. Units: s.");
+      prm.declare_entry("End kinetic to internal ratio",
+                        "0",
+                        Patterns::Double(0., 1.),
+                        "End the run before 'End time' once no contact pair "
+                        "carries force and the kinetic energy of the deformable "
+                        "bodies has stayed below this fraction of the internal "
+                        "energy for 'End quiet time' (a member that has settled); "
+                        "0: off. With 'End kinetic energy fraction' too, both "
+                        "must hold. Units: none.");
+      prm.declare_entry("Duration",
+                        "0",
+                        Patterns::Double(0.),
+                        "If positive, the run ends this long after its start: a "
+                        "stage's after the state it starts from (its 'End time' "
+                        "is then not used); 0: the run ends at 'End time'. "
+                        "Units: s.");
+      prm.declare_entry("Mass damping",
+                        "0",
+                        Patterns::Double(0.),
+                        "Mass-proportional damping alpha of the deformable bodies' "
+                        "nodes, the force -alpha m v (ABAQUS's alpha_R, LS-DYNA's "
+                        "*DAMPING_GLOBAL), for a stage that lets a member settle; "
+                        "its work is the energy column 'damping'. A mode of "
+                        "angular frequency omega gets the damping ratio alpha / "
+                        "(2 omega). 0: none. Units: 1/s.");
+      prm.declare_entry("Inactive bodies",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "Rigid bodies taken out of the analysis (a stage that "
+                        "removes the hammer): they stop where they are, their "
+                        "contact pairs are skipped, and their kinetic energy (and "
+                        "their springs' energy) becomes the energy column "
+                        "'removed'.");
       prm.declare_entry("Maximum number of steps",
                         "100000000",
                         Patterns::Integer(1),
@@ -415,13 +457,29 @@ namespace anvil
                           "'Point'.");
         prm.leave_subsection();
       }
+    for (const auto &s : stage_names)
+      {
+        prm.enter_subsection("Stage " + s);
+        prm.declare_entry("Changes",
+                          "",
+                          Patterns::Anything(),
+                          "The entries this stage changes, 'PATH=VALUE' separated "
+                          "by ';' (as 'anvil --set' takes them, for example "
+                          "'Simulation/Inactive bodies=hammer; Simulation/Mass "
+                          "damping=2000'); they hold for this stage and the ones "
+                          "after it. A stage keeps the scene's bodies, mesh, bars, "
+                          "contact pairs and constrained nodes; it may change "
+                          "boundary-condition types and velocities, the end, the "
+                          "end criteria, damping, inactive bodies and outputs.");
+        prm.leave_subsection();
+      }
   }
 
 
   void Simulator::print_parameters(std::ostream &out)
   {
     dealii::ParameterHandler prm;
-    declare_parameters(prm, {"body"}, {"support"}, {"pair"}, {"probe"}, {"bars"});
+    declare_parameters(prm, {"body"}, {"support"}, {"pair"}, {"probe"}, {"bars"}, {"stage"});
     prm.print_parameters(out,
                          dealii::ParameterHandler::OutputStyle::PRM |
                            dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
@@ -537,6 +595,7 @@ namespace anvil
     const auto pair_names  = names(lists.get("Contact pairs"));
     const auto probe_names = names(lists.get("Probes"));
     const auto rebar_names = names(lists.get("Rebars"));
+    const auto stage_names = names(lists.get("Stages"));
     // Every name becomes a subsection of some fifty entries: a list of
     // hundreds of thousands would take minutes and gigabytes to declare.
     constexpr std::size_t max_names = 1000;
@@ -544,7 +603,8 @@ namespace anvil
                                       std::pair{"Boundary conditions", &bc_names},
                                       std::pair{"Contact pairs", &pair_names},
                                       std::pair{"Probes", &probe_names},
-                                      std::pair{"Rebars", &rebar_names}})
+                                      std::pair{"Rebars", &rebar_names},
+                                      std::pair{"Stages", &stage_names}})
       {
         if (list->size() > max_names)
           throw InputError(parameter_file + ": entry '" + entry + "' names " + std::to_string(list->size()) +
@@ -556,9 +616,55 @@ namespace anvil
       throw InputError(parameter_file + ": entry 'Bodies' names no body");
 
     // Pass 2: everything, strictly.
-    declare_parameters(prm, body_names, bc_names, pair_names, probe_names, rebar_names);
+    declare_parameters(prm, body_names, bc_names, pair_names, probe_names, rebar_names, stage_names);
     parse(prm, false);
-    return {body_names, bc_names, pair_names, probe_names, rebar_names};
+    return {body_names, bc_names, pair_names, probe_names, rebar_names, stage_names};
+  }
+
+
+  std::vector<Stage> Simulator::read_stages(const std::string              &parameter_file,
+                                            const std::vector<std::string> &overrides)
+  {
+    dealii::ParameterHandler prm;
+    const auto               lists = read_scene(parameter_file, overrides, prm);
+    std::vector<Stage>       stages;
+    std::vector<std::string> accumulated = overrides;
+    for (const auto &name : lists[5])
+      {
+        Stage stage;
+        stage.name = name;
+        prm.enter_subsection("Stage " + name);
+        const std::string changes = prm.get("Changes");
+        prm.leave_subsection();
+        for (const auto &c : dealii::Utilities::split_string_list(changes, ';'))
+          if (!c.empty())
+            stage.changes.push_back(c);
+        // A stage's changes are overrides of the scene: checked as such,
+        // with the changes of the stages before it.
+        for (const auto &c : stage.changes)
+          {
+            const auto path = c.substr(0, c.find('='));
+            if (path.rfind("Stage", 0) == 0 || path == "Stages" || path == "Bodies" ||
+                path == "Contact pairs" || path == "Rebars" || path == "Boundary conditions" ||
+                path == "Probes")
+              throw InputError(parameter_file + ": subsection 'Stage " + name + "', entry 'Changes': '" +
+                               c.substr(0, 80) +
+                               "' changes the scene's lists; a stage keeps the scene's bodies, "
+                               "boundary conditions, contact pairs, probes, bars and stages");
+          }
+        accumulated.insert(accumulated.end(), stage.changes.begin(), stage.changes.end());
+        try
+          {
+            validate_scene(parameter_file, accumulated);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError(parameter_file + ": subsection 'Stage " + name + "', entry 'Changes': " +
+                             e.what());
+          }
+        stages.push_back(stage);
+      }
+    return stages;
   }
 
 
@@ -589,6 +695,10 @@ namespace anvil
         max_steps        = prm.get_integer("Maximum number of steps");
         end_kinetic_fraction = prm.get_double("End kinetic energy fraction");
         end_quiet_time       = prm.get_double("End quiet time");
+        end_kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
+        duration                   = prm.get_double("Duration");
+        mass_damping               = prm.get_double("Mass damping");
+        const auto inactive_names  = names(prm.get("Inactive bodies"));
         {
           const std::string expression = prm.get("Maximum time step");
           max_dt_function = std::make_unique<dealii::FunctionParser<1>>(1);
@@ -663,6 +773,19 @@ namespace anvil
             prm.enter_subsection("Body " + body_names[b]);
             bodies[b].parse_parameters(prm, body_names[b], dir.empty() ? "." : dir);
             prm.leave_subsection();
+          }
+        body_inactive.assign(bodies.size(), 0);
+        for (const auto &name : inactive_names)
+          {
+            const auto it = std::find(body_names.begin(), body_names.end(), name);
+            if (it == body_names.end())
+              throw InputError("entry 'Simulation/Inactive bodies': '" + name + "' is not in 'Bodies' (" +
+                               join(body_names) + ")");
+            if (!bodies[it - body_names.begin()].is_rigid())
+              throw InputError("entry 'Simulation/Inactive bodies': body '" + name +
+                               "' is deformable; only rigid bodies (impactors) can be taken out of "
+                               "the analysis");
+            body_inactive[it - body_names.begin()] = 1;
           }
         auto check_body = [&](const std::string &name, const std::string &where) {
           if (std::find(body_names.begin(), body_names.end(), name) ==

@@ -47,15 +47,19 @@ namespace anvil
           }
       }
 
-    if (end_kinetic_fraction <= 0)
+    if (end_kinetic_fraction <= 0 && end_kinetic_internal_ratio <= 0)
       return false;
     double rigid_kinetic = 0;
     for (const auto &b : bodies)
       if (b.is_rigid())
         rigid_kinetic += b.rigid.kinetic_energy;
     const double deformable_kinetic = energies.kinetic - rigid_kinetic;
-    const bool   quiet =
-      !in_contact && deformable_kinetic < end_kinetic_fraction * std::abs(initial_energy);
+    // An impact that is over (against the initial energy), a member that
+    // has settled (against its internal energy): each one set must hold.
+    const bool quiet =
+      !in_contact &&
+      (end_kinetic_fraction <= 0 || deformable_kinetic < end_kinetic_fraction * std::abs(initial_energy)) &&
+      (end_kinetic_internal_ratio <= 0 || deformable_kinetic < end_kinetic_internal_ratio * energies.internal);
     if (!quiet)
       {
         summary.quiet_since            = -1;
@@ -141,6 +145,10 @@ namespace anvil
       out << "internal_energy_J," << energies.internal << '\n';
       out << "hourglass_energy_J," << energies.hourglass << '\n';
       out << "viscous_energy_J," << energies.viscous << '\n';
+      if (mass_damping > 0 || energies.damping != 0)
+        out << "damping_energy_J," << energies.damping << '\n';
+      if (energies.removed != 0)
+        out << "removed_energy_J," << energies.removed << '\n';
       out << "max_hourglass_to_internal," << summary.max_hourglass_ratio << '\n';
       out << "max_balance_error," << summary.max_balance_error << '\n';
       out << "wall_time_s," << wall_time << '\n';

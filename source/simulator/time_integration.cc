@@ -170,6 +170,8 @@ namespace anvil
     contact_frequency_squared           = 0;
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
       {
+        if (pair_inactive(p))
+          continue;
         auto &xs = contact_positions[p];
         auto &vs = contact_velocities[p];
         auto &fs = contact_forces[p];
@@ -269,7 +271,47 @@ namespace anvil
     // The velocities v^{n-1/2} of the constrained dofs, before the update.
     for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
       constrained_velocity_old[k] = v[constrained_dofs[k]];
-    if (rigid_dof.empty())
+    if (mass_damping > 0)
+      {
+        // Mass-proportional damping, centred: F_d^n = -alpha m (v^{n-1/2} +
+        // v^{n+1/2}) / 2 joins F^n, so v^{n+1/2} solves (1 + a) v^{n+1/2} =
+        // (1 - a) v^{n-1/2} + dt_avg f / m with a = alpha dt_avg / 2
+        // (unconditionally stable in the damping); its work over the step
+        // just made is booked by the trapezoid, -(F_d^{n-1} + F_d^n)/2 .
+        // v^{n-1/2} dt^{n-1/2}, as the elements book theirs.
+        // Constrained dofs are not damped (a constrained dof's damping
+        // would be part of its reaction); rigid dofs are the bodies' own.
+        if (damping_force_old.size() != n)
+          damping_force_old.assign(n, 0.);
+        if (damped_dof.size() != n)
+          {
+            damped_dof.assign(n, 1);
+            for (const unsigned int i : constrained_dofs)
+              damped_dof[i] = 0;
+            for (unsigned int i = 0; i < n; ++i)
+              if (!rigid_dof.empty() && rigid_dof[i])
+                damped_dof[i] = 2;
+          }
+        double absorbed = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          if (damped_dof[i] != 2)
+            {
+              // (alpha = 0: the undamped update, to the bit.)
+              const double alpha = damped_dof[i] ? mass_damping : 0.;
+              const double a     = 0.5 * alpha * dt_avg;
+              const double v_old = v[i];
+              const double v_new = ((1. - a) * v_old + dt_avg * f[i] / m[i]) / (1. + a);
+              const double fd    = -0.5 * alpha * m[i] * (v_old + v_new);
+              const double ft    = f[i] + fd;
+              absorbed -= 0.5 * (damping_force_old[i] + fd) * v_old * dt_previous;
+              damping_force_old[i] = fd;
+              v[i]                 = v_new;
+              kinetic += v_old * (m[i] * v_old + dt_previous * ft);
+              power += ft * (v_new - v_old);
+            }
+        energies.damping += Utilities::MPI::sum(absorbed, mpi_communicator);
+      }
+    else if (rigid_dof.empty())
       for (unsigned int i = 0; i < n; ++i)
         {
           const double v_old = v[i];
@@ -339,7 +381,14 @@ namespace anvil
                                        double      &power)
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (bodies[b].is_rigid())
+      if (bodies[b].is_rigid() && body_inactive[b])
+        {
+          // Out of the analysis: held where it was removed.
+          for (const auto &node : rigid_nodes[b])
+            for (unsigned int d = 0; d < 3; ++d)
+              velocity.local_element(node.first + d) = 0;
+        }
+      else if (bodies[b].is_rigid())
         {
           auto               &motion = bodies[b].rigid;
           std::vector<double> ft(6, 0.);
@@ -766,6 +815,20 @@ namespace anvil
       load_checkpoint(resume_from, true);
     else
       {
+        // Bodies out of the analysis from the start take no part in it.
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          if (body_inactive[b])
+            {
+              bodies[b].rigid.velocity         = 0;
+              bodies[b].rigid.angular_velocity = 0;
+              bodies[b].rigid.angular_momentum = 0;
+              bodies[b].rigid.kinetic_energy   = 0;
+              for (const auto &node : rigid_nodes[b])
+                for (unsigned int d = 0; d < 3; ++d)
+                  velocity.local_element(node.first + d) = 0;
+            }
+        if (duration > 0)
+          end_time = duration;
         // Step 0: forces of the initial state (stress free), energy E_0.
         zero_forces();
         critical_dt = compute_internal_forces(0.);
@@ -837,6 +900,12 @@ namespace anvil
         for (const auto &r : contact_results)
           energies.contact += r.energy;
 
+        // The state a next stage starts from: x^n, v^{n-1/2} and F^n, before
+        // the last step synchronises the velocities, so that the stage goes
+        // on with the step this run would have made (bitwise the same as
+        // one run through the stage change).
+        if (last && checkpoint_at_end)
+          write_checkpoint();
         update_velocity(dt_previous, last ? 0. : current_dt);
         check_health(time, step_number, time_step_factor * dt_stable);
         // The end criterion, met at time n, makes n+1 the last time (the
@@ -929,14 +998,6 @@ namespace anvil
     if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
       throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
                                                  output_failure);
-    // The last step synchronised the velocities to the end time: a next
-    // stage starts from them as a run starts from its initial state (a
-    // half step first), so the checkpoint says the previous step was 0.
-    if (checkpoint_at_end)
-      {
-        loop.dt_previous = 0;
-        write_checkpoint();
-      }
     write_body_summary();
     const double wall_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -944,9 +1005,17 @@ namespace anvil
     write_plots();
     write_status("finished", time, wall_total, 0.);
     if (summary.ended_early)
-      pcout << "  the impact is over (no contact force, kinetic energy of the deformable bodies below "
-            << end_kinetic_fraction << " E_0 for " << end_quiet_time
-            << " s): the run ends before 'End time'" << std::endl;
+      {
+        pcout << "  " << (end_kinetic_fraction > 0 ? "the impact is over" : "the bodies have settled")
+              << " (no contact force, kinetic energy of the deformable bodies below ";
+        if (end_kinetic_fraction > 0)
+          pcout << end_kinetic_fraction << " E_0";
+        if (end_kinetic_fraction > 0 && end_kinetic_internal_ratio > 0)
+          pcout << " and ";
+        if (end_kinetic_internal_ratio > 0)
+          pcout << end_kinetic_internal_ratio << " E_int";
+        pcout << " for " << end_quiet_time << " s): the run ends before its end time" << std::endl;
+      }
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance_error;
     if (n_eroded > 0)

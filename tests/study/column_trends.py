@@ -1,12 +1,15 @@
 """The paper's hammer-mass and hammer-velocity studies on the coarse RC
-column (prm/rc_column_impact/studies/*_coarse.prm, run by `anvil --study`).
+column (prm/rc_column_impact/studies/*_coarse.prm, run by `anvil --study`),
+each run the three stages of rc_column_damage_index_coarse.prm: the impact,
+the column settling without the hammer, the axial push to failure.
 
 The mass study is first stopped with SIGTERM and started again: its runs
 resume from their checkpoints. Checks: every run ends (exit 0) with its energy balance closed (below 2 %
 of the scale); the initial energy of each run is the hammer's 1/2 m v^2
 (the study changed the entry it names); and the trend directions of the
 seed's section 5.5.1-5.5.2: the peak displacement of the impact point
-grows with the hammer mass and with its velocity. The sizes of the
+grows with the hammer mass and with its velocity, and so does the damage
+index D = 1 - P_residual / P_intact (the paper's criterion). The sizes of the
 increments are printed beside the paper's (doc/studies.md says why they
 differ: the arching of the fixed ends, prm/rc_column_impact/README.md).
 """
@@ -69,4 +72,14 @@ for study, values, energy, paper in (
     c.check_true(f"{study}: peak displacement grows with the varied value",
                  grows, f"peaks {', '.join(f'{1e3 * peak[i]:.2f}' for i in order)} mm; increments {steps} "
                  f"(the paper: {paper})")
+    # The damage index of each run's last stage: the axial push of the
+    # settled column against the intact column's capacity.
+    D = t["damage_index"]
+    c.check_true(f"{study}: damage index D = 1 - P_residual / P_intact grows with the varied value",
+                 all(D[order[k + 1]] > D[order[k]] for k in range(len(order) - 1)),
+                 f"D {', '.join(f'{D[i]:.3f}' for i in order)} (P_residual "
+                 f"{', '.join(f'{t['axial_capacity_N'][i] / 1e3:.0f}' for i in order)} kN)")
+    for i in range(len(x)):
+        c.check_below(f"{study} {x[i]:g}: the column settled (kinetic / internal energy when the push starts)",
+                      t["settle.final_kinetic_energy_J"][i] / t["settle.internal_energy_J"][i], 1e-3)
 c.finish()

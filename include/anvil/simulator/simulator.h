@@ -54,11 +54,17 @@ namespace anvil
     double step_change   = 0;
     /** Work of the bulk viscosity (dissipated). */
     double viscous       = 0;
+    /** Work of the mass-proportional damping ('Mass damping'; dissipated). */
+    double damping       = 0;
+    /** Energy taken out of the analysis with the bodies a stage removes
+        ('Inactive bodies': their kinetic energy, and the energy of their
+        contact springs, when they were removed). */
+    double removed       = 0;
     double external_work = 0;
     double total() const
     {
-      return kinetic + internal + hourglass + viscous + contact + friction + eroded + bond +
-             step_change;
+      return kinetic + internal + hourglass + viscous + damping + contact + friction + eroded +
+             removed + bond + step_change;
     }
   };
 
@@ -79,6 +85,15 @@ namespace anvil
         scene-wide id, so that every partition reports the same). */
     int          group   = -1;
     unsigned int element = 0;
+  };
+
+  /** A stage of a scene (doc/user_guide.md, "Stages"): its name and the
+      entries it changes ('PATH=VALUE', as --set), applied to the scene for
+      this stage and the stages after it. */
+  struct Stage
+  {
+    std::string              name;
+    std::vector<std::string> changes;
   };
 
   class Simulator
@@ -104,6 +119,18 @@ namespace anvil
     /** Split "PATH=VALUE" overrides; InputError for a malformed one. */
     static std::vector<std::pair<std::string, std::string>>
     split_overrides(const std::vector<std::string> &overrides);
+
+    /** The stages of the scene @p parameter_file (with @p overrides): its
+        'Stages' and their 'Changes', each change checked as an override;
+        empty for a scene of one stage. */
+    static std::vector<Stage> read_stages(const std::string              &parameter_file,
+                                          const std::vector<std::string> &overrides);
+
+    /** OUTPUT DIRECTORY/NAME of this scene. */
+    const std::string &get_output_directory() const
+    {
+      return output_directory;
+    }
 
     /** Print the whole parameter tree with documentation (.prm syntax). */
     static void print_parameters(std::ostream &out);
@@ -137,10 +164,11 @@ namespace anvil
                                    const std::vector<std::string>   &bcs,
                                    const std::vector<std::string>   &pairs,
                                    const std::vector<std::string>   &probes,
-                                   const std::vector<std::string>   &rebars = {});
+                                   const std::vector<std::string>   &rebars = {},
+                                   const std::vector<std::string>   &stages = {});
     /** Expand the scene and its overrides and parse them strictly into
         @p prm; returns the lists of names (bodies, boundary conditions,
-        contact pairs, probes, rebars). */
+        contact pairs, probes, rebars, stages). */
     static std::vector<std::vector<std::string>>
                 read_scene(const std::string              &parameter_file,
                            const std::vector<std::string> &overrides,
@@ -306,6 +334,29 @@ namespace anvil
         end_kinetic_fraction E_0 for end_quiet_time (0: off). */
     double      end_kinetic_fraction = 0;
     double      end_quiet_time       = 0.01;
+    /** End criterion of a settling stage: the deformable bodies' kinetic
+        energy below this fraction of the internal energy for
+        end_quiet_time (0: off). */
+    double      end_kinetic_internal_ratio = 0;
+    /** 'Duration' (> 0): the run ends this long after its start (a
+        stage's: after the state it starts from), at stage_start +
+        duration; 0: at 'End time'. */
+    double      duration    = 0;
+    double      stage_start = 0;
+    /** Mass-proportional damping F = -alpha M v of the deformable nodes
+        (1/s; 0: none), and each owned dof's damping force of the last
+        step (for the trapezoidal work, as the elements book theirs). */
+    double              mass_damping = 0;
+    std::vector<double> damping_force_old;
+    std::vector<unsigned char> damped_dof;
+    /** 'Inactive bodies': per body, whether it is out of the analysis
+        (rigid bodies only: held still, their contact pairs skipped). */
+    std::vector<unsigned char> body_inactive;
+    /** Take the inactive bodies out: their kinetic energy and that of
+        their pairs' springs is booked as removed; their motion stops. */
+    void        remove_inactive_bodies();
+    /** Whether contact pair @p p involves an inactive body. */
+    bool        pair_inactive(unsigned int p) const;
     /** 'Maximum time step' (<= 0: no bound): a constant, or a function of
         t when the entry names t. */
     double                                     max_dt_constant = 0;
@@ -439,4 +490,15 @@ namespace anvil
     std::vector<std::pair<double, std::string>> pvd_records;
     unsigned int                 output_count = 0;
   };
+
+  /**
+   * `anvil SCENE.prm` (and --check, --resume): the scene's own run, then
+   * each of its 'Stages' on the state the one before left
+   * (source/simulator/stages.cc); a scene without stages is one run.
+   */
+  void run_scene_with_stages(const std::string              &file,
+                             const std::vector<std::string> &overrides,
+                             MPI_Comm                        comm,
+                             bool                            resume,
+                             bool                            check_only);
 } // namespace anvil

@@ -1,0 +1,222 @@
+"""Stages of a scene ('Stages', 'Stage NAME/Changes'): a run goes on, in one
+command, on the state the one before left, with entries changed.
+
+- A stage switch conserves the state: the rod impact split into two stages
+  at t = 0.125 s gives, from the split on, the histories of the unsplit run
+  byte for byte (a fixed step of 2^-13 s, so that both runs step through
+  0.125 s alike); on two processes the stage's histories equal one
+  process's to round-off of the energy sums.
+- Mass damping ('Mass damping' alpha): a free elastic block moving at v0
+  keeps its shape and slows as v0 exp(-alpha t); the damping column holds
+  the kinetic energy lost, 1/2 m v0^2 (1 - exp(-2 alpha t)); the balance
+  closes.
+- A member that settles ('End kinetic to internal ratio'): a block under
+  gravity, fixed at its base, rings, then settles in a damped stage that
+  ends by the criterion; the top's displacement is the static rho g H^2 /
+  (2 E) of a bar under its own weight (nu = 0: one-dimensional; total
+  Lagrangian, whose hyperelastic energy the balance closes on).
+- A body taken out ('Inactive bodies'): a rigid hammer flying at a block
+  is removed before it strikes; its kinetic energy becomes the 'removed'
+  column, it stays where it was, its contact pair never acts, the balance
+  closes.
+- Bad input: a stage that changes an entry that does not exist, or takes a
+  deformable body out, stops before any run with one line (exit 2).
+"""
+import math
+import os
+import subprocess
+from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+
+args = arguments()
+c = Checker("stages: state conserved, mass damping, settling, removed bodies")
+work = args.work_dir
+src = os.path.abspath(args.source_dir)
+rod = os.path.join(src, "prm", "elastic_rod_impact", "elastic_rod_impact.prm")
+quiet = """  set Plots = false
+  set Print wall times = false
+  set Overwrite existing output = true
+"""
+
+
+def summary(*parts):
+    s = read_csv(os.path.join(work, "output", *parts, "summary.csv"))
+    return dict(zip(s["quantity"], s["value"]))
+
+
+# 1. A stage switch conserves the state.
+fixed = "  set Maximum time step = 1.220703125e-4\n" + quiet
+whole = write_scene(os.path.join(work, "whole.prm"), text=f"""include {rod}
+subsection Simulation
+  set End time = 0.25
+{fixed}end
+""")
+split_text = f"""include {rod}
+set Stages = second
+subsection Simulation
+  set End time = 0.125
+{fixed}end
+subsection Stage second
+  set Changes = Simulation/End time=0.25
+end
+"""
+split = write_scene(os.path.join(work, "split.prm"), text=split_text)
+split2 = write_scene(os.path.join(work, "split_np2.prm"), text=split_text)
+r1 = run_anvil(args.anvil, whole, cwd=work)
+r2 = run_anvil(args.anvil, split, cwd=work)
+r3 = run_anvil(args.anvil, split2, np=2, cwd=work)
+if c.check_true("unsplit, split and split on 2 processes run", r1[0] == 0 and r2[0] == 0 and r3[0] == 0,
+                (r1[2] + r2[2] + r3[2]).strip()[-300:]):
+    differ, compared = [], 0
+    for name in ("energy.csv", "momentum.csv", "probe_face_a.csv", "probe_centre_b.csv", "contact_impact.csv"):
+        w = open(os.path.join(work, "output", "whole", name)).read().splitlines()
+        s = open(os.path.join(work, "output", "split", "second", name)).read().splitlines()
+        t0 = float(s[1].split(",")[0])
+        tail = [l for l in w[1:] if float(l.split(",")[0]) >= t0]
+        compared += len(s) - 1
+        if tail != s[1:]:
+            differ.append(name)
+    c.check("stage 'second' starts at the split (s)", float(summary("split", "second")["end_time_s"]) - 0.125,
+            0.125, 1e-12)
+    c.check_true(f"the stage's {compared} history rows equal the unsplit run's from 0.125 s on, byte for byte",
+                 not differ, ", ".join(differ))
+    a = read_csv(os.path.join(work, "output", "split", "second", "probe_face_a.csv"))
+    b = read_csv(os.path.join(work, "output", "split_np2", "second", "probe_face_a.csv"))
+    scale = max(abs(x) for x in a["ux"])
+    worst = max(abs(x - y) for x, y in zip(a["ux"], b["ux"])) / scale
+    c.check_below("2 processes against 1: the stage's face displacement (relative to its peak)", worst, 1e-8)
+    s = summary("split")
+    c.check_true("the scene's summary.csv holds the stage's figures",
+                 "second.peak_displacement_m" in s and "total_wall_time_s" in s)
+
+# 2. Mass damping: a free block slows as exp(-alpha t).
+v0, alpha, rho, side = 2.0, 40.0, 1000.0, 0.2
+block = """set Bodies = block
+subsection Simulation
+{extra}{quiet}end
+subsection Body block
+  subsection Mesh
+    set Lower corner = 0, 0, 0
+    set Upper corner = {side}, {side}, {height}
+    set Subdivisions = 2, 2, {nz}
+  end
+  subsection Material
+    subsection elastic
+      set Density = {rho}
+      set Young's modulus = 1e7
+      set Poisson's ratio = {nu}
+    end
+  end
+  set Initial velocity = {velocity}
+end
+"""
+prm = write_scene(os.path.join(work, "damped.prm"), text=block.format(
+    extra=f"  set End time = 0.01\n", quiet=quiet, side=side, height=side, nz=2, rho=rho, nu=0.3,
+    velocity=f"{v0}, 0, 0") + f"""set Stages = damped
+subsection Stage damped
+  set Changes = Simulation/Mass damping={alpha}; Simulation/Duration=0.05
+end
+""")
+code, out, err = run_anvil(args.anvil, prm, cwd=work)
+if c.check_true("damped block runs", code == 0, err.strip()[-300:]):
+    m = rho * side ** 3
+    mom = read_csv(os.path.join(work, "output", "damped", "damped", "momentum.csv"))
+    e = read_csv(os.path.join(work, "output", "damped", "damped", "energy.csv"))
+    t = mom["time"][-1] - mom["time"][0]
+    c.check("stage duration (s)", t, 0.05, 1e-12)
+    # The decay between two rows inside the stage (at the switch the
+    # damping acts from half a step before: the scheme's v^{n-1/2}).
+    i, j = 2, len(mom["time"]) - 2
+    c.check("momentum decay between two times / exp(-alpha (t2 - t1))",
+            mom["px"][j] / mom["px"][i] / math.exp(-alpha * (mom["time"][j] - mom["time"][i])), 1.0, 1e-3)
+    c.check("damping energy / 1/2 m v0^2 (1 - exp(-2 alpha t))", e["damping"][-1] /
+            (0.5 * m * v0 ** 2 * (1 - math.exp(-2 * alpha * t))), 1.0, 1e-3)
+    c.check_below("internal energy of the rigidly moving block (J)", abs(e["internal"][-1]), 1e-9)
+    c.check_below("energy balance error with the damping booked", max(e["balance_error"]), 1e-6)
+
+# 3. Settling under gravity: the static sag of a bar under its own weight.
+E, H, g = 1e7, 1.0, 9.81
+settle = block.format(extra="  set End time = 0.05\n  set Gravity = 0, 0, -9.81\n", quiet=quiet, side=side,
+                      height=H, nz=10, rho=rho, nu=0.0, velocity="0, 0, 0").replace("1e7", f"{E:g}") + """
+set Boundary conditions = base
+set Probes = top
+subsection Body block
+  set Formulation = total Lagrangian
+end
+subsection Boundary condition base
+  set Body = block
+  set Boundary ids = 4
+end
+subsection Probe top
+  set Point = 0.1, 0.1, 1.0
+end
+set Stages = settle
+subsection Stage settle
+  set Changes = Simulation/Mass damping=300; Simulation/End kinetic to internal ratio=1e-6; \\
+                Simulation/End quiet time=0.05; Simulation/Duration=5
+end
+"""
+prm = write_scene(os.path.join(work, "settle.prm"), text=settle)
+code, out, err = run_anvil(args.anvil, prm, cwd=work)
+if c.check_true("settling block runs", code == 0, err.strip()[-300:]):
+    s = summary("settle", "settle")
+    c.check_true("the settling stage ended by its criterion before its 5 s",
+                 s["ended_by_criterion"] == 1 and s["end_time_s"] < 5.0, f"at t = {s['end_time_s']:.3f} s")
+    p = read_csv(os.path.join(work, "output", "settle", "settle", "probe_top.csv"))
+    sag = rho * g * H ** 2 / (2 * E)
+    c.check("top displacement after settling / rho g H^2 / (2 E)", -p["uz"][-1] / sag, 1.0, 0.01)
+    e = read_csv(os.path.join(work, "output", "settle", "settle", "energy.csv"))
+    c.check_below("kinetic / internal energy at the end", e["kinetic"][-1] / e["internal"][-1], 1e-6)
+    # (Total Lagrangian: the updated Lagrangian's hypoelastic Jaumann rate
+    # loses 3.5e-4 of the energy in the coarse steps of ringing.)
+    c.check_below("energy balance error (gravity's work external, damping booked)", max(e["balance_error"]), 1e-4)
+    c.check_true("the damping absorbed energy", e["damping"][-1] > 0, f"{e['damping'][-1]:.4g} J")
+
+# 4. A body taken out: the hammer is removed before it strikes.
+hob = os.path.join(src, "prm", "hammer_on_block", "hammer_on_block.prm")
+prm = write_scene(os.path.join(work, "removed.prm"), text=f"""include {hob}
+set Stages = away
+subsection Simulation
+  set End time = 2e-6
+  set Gravity = 0, 0, 0
+  set History interval = 0
+  set Output interval = 0
+{quiet}end
+subsection Body block
+  subsection Mesh
+    set Subdivisions = 6, 6, 4
+  end
+end
+subsection Stage away
+  set Changes = Simulation/Inactive bodies=hammer; Simulation/Duration=2e-4
+end
+""")
+code, out, err = run_anvil(args.anvil, prm, cwd=work)
+if c.check_true("hammer removed in a stage", code == 0, err.strip()[-300:]):
+    d = os.path.join(work, "output", "removed", "away")
+    e = read_csv(os.path.join(d, "energy.csv"))
+    h = read_csv(os.path.join(d, "rigid_hammer.csv"))
+    f = read_csv(os.path.join(d, "contact_impact.csv"))
+    c.check("removed energy / 1/2 M v0^2 of the hammer", e["removed"][-1] / (0.5 * 270 * 2.0 ** 2), 1.0, 1e-9)
+    c.check_below("hammer's centre: largest movement during the stage (m)",
+                  max(abs(z - h["z"][0]) for z in h["z"]), 0.0)
+    c.check_below("contact force during the stage (N)", max(abs(x) for x in f["normal_force_z"]), 0.0)
+    c.check_below("kinetic energy left (J)", abs(e["kinetic"][-1]), 1e-12)
+    c.check_below("energy balance error", max(e["balance_error"]), 1e-9)
+
+# 5. Bad input in a stage stops before any run.
+for name, change, expect in (("bad_entry", "Simulation/No such entry=1", "No such entry"),
+                             ("bad_body", "Simulation/Inactive bodies=rod_a", "deformable")):
+    prm = write_scene(os.path.join(work, name + ".prm"), text=f"""include {rod}
+set Stages = next
+subsection Simulation
+{quiet}end
+subsection Stage next
+  set Changes = {change}
+end
+""")
+    code, out, err = run_anvil(args.anvil, prm, cwd=work)
+    lines = err.strip().splitlines()
+    c.check_true(f"stage with '{change}': exit 2, one line naming the stage, nothing run",
+                 code == 2 and len(lines) == 1 and "Stage next" in err and expect in err and
+                 not os.path.exists(os.path.join(work, "output", name)), err.strip()[:300])
+c.finish()
