@@ -74,11 +74,11 @@ for study, values, energy, paper in (
                  f"(the paper: {paper})")
     # The damage index of each run's last stage: the axial push of the
     # settled column against the intact column's capacity.
-    D = t["damage_index"]
+    D, P = t["damage_index"], t["axial_capacity_N"]
     c.check_true(f"{study}: damage index D = 1 - P_residual / P_intact grows with the varied value",
                  all(D[order[k + 1]] > D[order[k]] for k in range(len(order) - 1)),
                  f"D {', '.join(f'{D[i]:.3f}' for i in order)} (P_residual "
-                 f"{', '.join(f'{t['axial_capacity_N'][i] / 1e3:.0f}' for i in order)} kN)")
+                 f"{', '.join(f'{P[i] / 1e3:.0f}' for i in order)} kN)")
     for i in range(len(x)):
         c.check_below(f"{study} {x[i]:g}: the column settled (kinetic / internal energy when the push starts)",
                       t["settle.final_kinetic_energy_J"][i] / t["settle.internal_energy_J"][i], 1e-3)
