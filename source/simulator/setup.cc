@@ -182,6 +182,7 @@ namespace anvil
   void Simulator::check()
   {
     setup();
+    report_element_quality();
     prepare_output_directory(true);
     pcout << scene_file << ": scene '" << scene_name << "' is valid: "
           << bodies.size() << " bodies, " << triangulation.n_global_active_cells()

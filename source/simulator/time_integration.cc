@@ -815,6 +815,7 @@ namespace anvil
       load_checkpoint(resume_from, true);
     else
       {
+        report_element_quality();
         // Bodies out of the analysis from the start take no part in it.
         for (unsigned int b = 0; b < bodies.size(); ++b)
           if (body_inactive[b])

@@ -202,6 +202,10 @@ namespace anvil
                                  double &step_change);
     void   update_rebar_position(double dt);
     void setup_probes();
+    /** At the start of a run and in --check: the elements with the
+        smallest stable steps and a warning for distorted ones (scaled
+        Jacobian below 0.3), source/simulator/mesh_quality.cc. */
+    void report_element_quality();
     /** Make the output directory and remove the files of the earlier run
         there; with @p check_only, only report what would stop the run. */
     void prepare_output_directory(bool check_only = false);
