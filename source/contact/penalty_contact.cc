@@ -1021,6 +1021,15 @@ namespace anvil::Contact
         const Vec    nn    = (1. / norm(nc)) * nc;
         const double l     = dot(nn, t - r);
         const double depth = master.volume[chosen] / master.area[chosen];
+        if (-l > depth && previous >= 0)
+          {
+            // A node held last step that is now deeper than the element it
+            // pressed on: it has passed through the master surface between
+            // two steps (the springs could not stop it). It would leave
+            // contact silently; the run stops instead (Simulator).
+            ++result.n_passed_through;
+            result.passed_through_ratio = std::max(result.passed_through_ratio, -l / depth);
+          }
         if (!(l < depth) || -l > depth)
           continue;
 

@@ -117,6 +117,11 @@ namespace anvil::Contact
     dealii::Tensor<1, 3> shape_force, shape_torque;
     /** Number of active slave nodes (both passes). */
     unsigned int n_active = 0;
+    /** Slave nodes in contact last step that are now deeper than the
+        element they pressed on (passed through the master surface), and
+        the largest such depth over the element's thickness. */
+    unsigned int n_passed_through     = 0;
+    double       passed_through_ratio = 0;
   };
 
   /**

@@ -144,6 +144,11 @@ namespace anvil::Element
      */
     void set_nodal_mass_ratio(const double *ratio);
 
+    /** The squared stable step of the viscous hourglass damping of an
+        element of current volume @p volume and density @p rho (see
+        element_group.cc). */
+    double viscous_hourglass_step2(double volume, double rho, double node_mass_factor) const;
+
     /**
      * The explicit element loop: from current positions @p x and
      * velocities @p v (the half-step velocity that brought the mesh to x),

@@ -249,6 +249,9 @@ namespace anvil
       double next_history  = 0;
       double next_progress = 0;
       bool   quiet_end     = false;
+      /** The step the stable step allows, held against small rises (see
+          run_scene). */
+      double held_dt       = 0;
     };
     LoopState loop;
     double    checkpoint_interval      = 0;
