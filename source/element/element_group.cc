@@ -286,23 +286,6 @@ namespace anvil::Element
   }
 
 
-  // The viscous hourglass force of an element, f_I = -k gamma_I (gamma .
-  // v) with k = Q rho V^(2/3) c / 4 (seed Eq. (44)), acts on a
-  // checkerboard mode (|gamma|^2 = 8, the node's mass rho V / 8 per
-  // element) as a damper c_d / m = 16 Q c / V^(1/3) on velocities of the
-  // last half step, stable for dt <= 2 m / c_d = V^(1/3) / (8 Q c) (the
-  // lightest node's share of the mass scales it). Below Q = 1/8 this is
-  // never below L_e / c; above it (Q = 0.3 on a cube: 0.42 L_e / c) it
-  // sets the step.
-  double ElementGroup::viscous_hourglass_step2(const double volume,
-                                               const double rho,
-                                               const double node_mass_factor) const
-  {
-    const double q = 8. * hourglass_coefficient;
-    return q > 0 ? std::cbrt(volume * volume) * rho / (q * q * material.wave_modulus()) * node_mass_factor : 1e300;
-  }
-
-
   void ElementGroup::set_nodal_mass_ratio(const double *ratio)
   {
     for (unsigned int e = 0; e < mass_factor.size(); ++e)
@@ -465,6 +448,7 @@ namespace anvil::Element
         double e_int    = 0;
         double e_visc   = 0;
         double dt_bulk2 = 1; // bulk viscosity's factor on the squared stable step
+        double dt_hourglass2 = 1e300; // the viscous hourglass damper's squared stable step
         double volume   = 0;
         double Jinv_c[3][3]; // centroid inverse Jacobian, for hourglass control
         double Jd_c[3][3];   // centroid velocity Jacobian, for hourglass control
@@ -808,6 +792,7 @@ namespace anvil::Element
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int j = 0; j < 4; ++j)
                     r[a][j] = k * h[a][j];
+                dt_hourglass2 = viscous_hourglass_step2(rho * volume, k, mass_factor[e]);
               }
             else
               {
@@ -883,8 +868,7 @@ namespace anvil::Element
             shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
           }
         min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
-        if constexpr (H == HourglassType::viscous)
-          min_dt2 = std::min(min_dt2, viscous_hourglass_step2(volume, rho_c, mass_factor[e]));
+        min_dt2 = std::min(min_dt2, dt_hourglass2);
         result.viscous_energy_increment += energy_weight[e] * e_visc;
 
         for (unsigned int n = 0; n < 8; ++n)
@@ -1110,7 +1094,8 @@ namespace anvil::Element
 
         // Bulk viscosity: the pressure q joins the normal stresses of the
         // forces (not the stored stress); its trapezoidal work.
-        alignas(64) double qv[W] = {}, e_visc[W] = {}, dt_bulk2[W];
+        alignas(64) double qv[W] = {}, e_visc[W] = {}, dt_bulk2[W], dt_hourglass2[W];
+        std::fill(dt_hourglass2, dt_hourglass2 + W, 1e300);
         std::fill(dt_bulk2, dt_bulk2 + W, 1.);
         if (bulk_viscosity())
           for (unsigned int l = 0; l < W; ++l)
@@ -1162,7 +1147,10 @@ namespace anvil::Element
                 const double volume = 8. * detn[l];
                 const double rho    = rho0 * V0[l] / volume;
                 if constexpr (H == HourglassType::viscous)
-                  k[l] = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
+                  {
+                    k[l] = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
+                    dt_hourglass2[l] = viscous_hourglass_step2(rho * volume, k[l], mass_factor[el[l]]);
+                  }
                 else
                   k[l] = 0.25 * hourglass_coefficient * M * std::cbrt(volume) * stiffness[l];
               }
@@ -1226,8 +1214,7 @@ namespace anvil::Element
           {
             const double rho_c = rho0 * V0[l] / (8. * detn[l]);
             dt2[l]             = 4. / g2[l] * shape[l] * rho_c / M * dt_bulk2[l];
-            if constexpr (H == HourglassType::viscous)
-              dt2[l] = std::min(dt2[l], viscous_hourglass_step2(8. * detn[l], rho_c, mass_factor[el[l]]));
+            dt2[l] = std::min(dt2[l], dt_hourglass2[l]);
           }
 
         // Write back and scatter the valid lanes, in element order.

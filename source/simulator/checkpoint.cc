@@ -68,18 +68,20 @@ namespace anvil
 
   // A stage that takes bodies out (the hammer once the impact is over):
   // what they held leaves the balance as 'removed' energy, booked once, at
-  // the start of the stage.
-  void Simulator::remove_inactive_bodies()
+  // the start of the stage (@p book_energy; not for a run that starts
+  // without them).
+  void Simulator::remove_inactive_bodies(const bool book_energy)
   {
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (body_inactive[b])
         {
           auto &m = bodies[b].rigid;
-          const double kinetic =
-            0.5 * (m.mass * (m.velocity * m.velocity) +
-                   m.angular_velocity * (m.reference_inertia * m.angular_velocity));
-          energies.removed += kinetic;
-          energies.kinetic -= kinetic;
+          const double kinetic = m.velocity_kinetic_energy();
+          if (book_energy)
+            {
+              energies.removed += kinetic;
+              energies.kinetic -= kinetic;
+            }
           m.velocity         = 0;
           m.angular_velocity = 0;
           m.angular_momentum = 0;
@@ -87,27 +89,18 @@ namespace anvil
           for (const auto &node : rigid_nodes[b])
             for (unsigned int d = 0; d < 3; ++d)
               velocity.local_element(node.first + d) = 0;
-          if (kinetic > 0)
+          if (book_energy && kinetic > 0)
             pcout << "  body '" << bodies[b].name << "' taken out of the analysis with " << kinetic
                   << " J of kinetic energy" << std::endl;
         }
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
-      if (pair_inactive(p))
+      if (pair_inactive[p])
         {
-          energies.removed += contact_results[p].energy;
+          if (book_energy)
+            energies.removed += contact_results[p].energy;
           contact_results[p] = Contact::ContactResult();
         }
     velocity.update_ghost_values();
-  }
-
-
-  bool Simulator::pair_inactive(const unsigned int p) const
-  {
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (body_inactive[b] &&
-          (bodies[b].name == contact_pairs[p].first_body || bodies[b].name == contact_pairs[p].second_body))
-        return true;
-    return false;
   }
 
 
@@ -253,7 +246,7 @@ namespace anvil
       {
         // A stage of its own: its histories, frames and figures start
         // here; the energies (and the balance) continue.
-        remove_inactive_bodies();
+        remove_inactive_bodies(true);
         summary = Summary();
         std::fill(peak_bc_reaction.begin(), peak_bc_reaction.end(), 0.);
         pvd_records.clear();

@@ -628,7 +628,6 @@ namespace anvil
     dealii::ParameterHandler prm;
     const auto               lists = read_scene(parameter_file, overrides, prm);
     std::vector<Stage>       stages;
-    std::vector<std::string> accumulated = overrides;
     for (const auto &name : lists[5])
       {
         Stage stage;
@@ -639,8 +638,9 @@ namespace anvil
         for (const auto &c : dealii::Utilities::split_string_list(changes, ';'))
           if (!c.empty())
             stage.changes.push_back(c);
-        // A stage's changes are overrides of the scene: checked as such,
-        // with the changes of the stages before it.
+        // A stage keeps the scene's lists; its changes are otherwise
+        // checked as overrides when the stage's scene is read
+        // (run_scene_with_stages, before anything runs).
         for (const auto &c : stage.changes)
           {
             const auto path = c.substr(0, c.find('='));
@@ -651,16 +651,6 @@ namespace anvil
                                c.substr(0, 80) +
                                "' changes the scene's lists; a stage keeps the scene's bodies, "
                                "boundary conditions, contact pairs, probes, bars and stages");
-          }
-        accumulated.insert(accumulated.end(), stage.changes.begin(), stage.changes.end());
-        try
-          {
-            validate_scene(parameter_file, accumulated);
-          }
-        catch (const InputError &e)
-          {
-            throw InputError(parameter_file + ": subsection 'Stage " + name + "', entry 'Changes': " +
-                             e.what());
           }
         stages.push_back(stage);
       }
@@ -816,6 +806,11 @@ namespace anvil
             prm.leave_subsection();
             check_body(contact_pairs[i].first_body, "Contact pair " + pair_names[i]);
             check_body(contact_pairs[i].second_body, "Contact pair " + pair_names[i]);
+            pair_inactive.push_back(0);
+            for (unsigned int b = 0; b < bodies.size(); ++b)
+              if (body_inactive[b] && (body_names[b] == contact_pairs[i].first_body ||
+                                       body_names[b] == contact_pairs[i].second_body))
+                pair_inactive.back() = 1;
             if (contact_pairs[i].penalty_factor > 0.4)
               pcout << "Warning: contact pair '" << pair_names[i]
                     << "': penalty scale factor "

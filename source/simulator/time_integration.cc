@@ -170,7 +170,7 @@ namespace anvil
     contact_frequency_squared           = 0;
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
       {
-        if (pair_inactive(p))
+        if (pair_inactive[p])
           continue;
         auto &xs = contact_positions[p];
         auto &vs = contact_velocities[p];
@@ -832,18 +832,9 @@ namespace anvil
     else
       {
         report_element_quality();
-        // Bodies out of the analysis from the start take no part in it.
-        for (unsigned int b = 0; b < bodies.size(); ++b)
-          if (body_inactive[b])
-            {
-              bodies[b].rigid.velocity         = 0;
-              bodies[b].rigid.angular_velocity = 0;
-              bodies[b].rigid.angular_momentum = 0;
-              bodies[b].rigid.kinetic_energy   = 0;
-              for (const auto &node : rigid_nodes[b])
-                for (unsigned int d = 0; d < 3; ++d)
-                  velocity.local_element(node.first + d) = 0;
-            }
+        // Bodies out of the analysis from the start take no part in it
+        // (nothing to book: the initial energy follows).
+        remove_inactive_bodies(false);
         if (duration > 0)
           end_time = duration;
         // Step 0: forces of the initial state (stress free), energy E_0.
@@ -870,8 +861,7 @@ namespace anvil
         // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
         for (const auto &b : bodies)
           if (b.is_rigid())
-            energies.kinetic += 0.5 * (b.rigid.mass * (b.rigid.velocity * b.rigid.velocity) +
-                                       b.rigid.angular_velocity * (b.rigid.reference_inertia * b.rigid.angular_velocity));
+            energies.kinetic += b.rigid.velocity_kinetic_energy();
         initial_energy   = energies.total();
         summary.initial_kinetic = energies.kinetic;
         output_results(0., "solution");

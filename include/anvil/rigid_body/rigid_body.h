@@ -116,6 +116,13 @@ namespace anvil::RigidBody
       return velocity + cross_product_3d(angular_velocity, x - c);
     }
 
+    /** 1/2 M V.V + 1/2 omega . I omega of the current (half-step)
+        velocities, with the reference inertia. */
+    double velocity_kinetic_energy() const
+    {
+      return 0.5 * (mass * (velocity * velocity) + angular_velocity * (reference_inertia * angular_velocity));
+    }
+
     double                mass = 0;
     dealii::Point<3>      reference_centre, centre, previous_centre;
     dealii::Tensor<2, 3>  reference_inertia, rotation, previous_rotation;

@@ -121,7 +121,7 @@ namespace anvil
     split_overrides(const std::vector<std::string> &overrides);
 
     /** The stages of the scene @p parameter_file (with @p overrides): its
-        'Stages' and their 'Changes', each change checked as an override;
+        'Stages' and their 'Changes' (none may change the scene's lists);
         empty for a scene of one stage. */
     static std::vector<Stage> read_stages(const std::string              &parameter_file,
                                           const std::vector<std::string> &overrides);
@@ -359,11 +359,12 @@ namespace anvil
     /** 'Inactive bodies': per body, whether it is out of the analysis
         (rigid bodies only: held still, their contact pairs skipped). */
     std::vector<unsigned char> body_inactive;
-    /** Take the inactive bodies out: their kinetic energy and that of
-        their pairs' springs is booked as removed; their motion stops. */
-    void        remove_inactive_bodies();
-    /** Whether contact pair @p p involves an inactive body. */
-    bool        pair_inactive(unsigned int p) const;
+    /** Take the inactive bodies out: their motion stops; with
+        @p book_energy their kinetic energy and that of their pairs'
+        springs is booked as removed (a stage's start). */
+    void        remove_inactive_bodies(bool book_energy);
+    /** Per contact pair: whether it involves an inactive body (skipped). */
+    std::vector<unsigned char> pair_inactive;
     /** 'Maximum time step' (<= 0: no bound): a constant, or a function of
         t when the entry names t. */
     double                                     max_dt_constant = 0;
