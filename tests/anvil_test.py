@@ -248,3 +248,83 @@ def plane_condition(name, body, axis, at=0.0, components=None):
             f"  set Box lower corner = {', '.join(f'{v:.9g}' for v in lower)}\n"
             f"  set Box upper corner = {', '.join(f'{v:.9g}' for v in upper)}\n"
             f"  set Components = {components or axis}\nend\n")
+
+
+def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
+    """Scene text of a body 'name': an elastic box from 'lower' to 'upper'
+    (3 numbers each) with 'subdivisions' (3 integers)."""
+    join = lambda v: ", ".join(f"{x:g}" for x in v)
+    return f"""subsection Body {name}
+  subsection Mesh
+    set Source = box
+    set Lower corner = {join(lower)}
+    set Upper corner = {join(upper)}
+    set Subdivisions = {join(subdivisions)}
+  end
+  subsection Material
+    set Model = elastic
+    subsection elastic
+      set Density         = {density:g}
+      set Young's modulus = {E:g}
+      set Poisson's ratio = {nu:g}
+    end
+  end
+end
+"""
+
+
+def dormant_rod_scene():
+    """Lines added to prm/elastic_rod_impact: a third rod 100 m away (as
+    fine as the two), in a contact pair with rod B that never closes."""
+    return ("set Bodies = rod_a, rod_b, far\nset Contact pairs = impact, far_pair\n"
+            + elastic_box_body("far", (100, -0.5, -0.5), (110, 0.5, 0.5), (80, 4, 4), 0.01, 100, 0.3)
+            + "subsection Contact pair far_pair\n  set First body  = rod_b\n  set Second body = far\nend\n")
+
+
+def hertz_ball_scene(inp, R, E, nu, rho, v, penalty=1.0, end_time=0.012):
+    """Scene text of an elastic quarter ball (mesh file 'inp', radius R,
+    symmetry planes x = 0 and y = 0) dropped at v on an exact rigid plane
+    just below it (Hertz's problem), history every 2e-5 s."""
+    return f"""# Elastic quarter sphere dropped on a rigid plane (Hertz).
+set Bodies = floor, ball
+set Contact pairs = hit
+set Boundary conditions = sym_x, sym_y
+subsection Simulation
+  set End time = {end_time}
+  set History interval = 2e-5
+end
+subsection Body floor
+  subsection Mesh
+    set Lower corner = 0.2, 0.2, -0.1
+    set Upper corner = 0.21, 0.21, -0.09
+  end
+  subsection Material
+    set Model = rigid
+  end
+  subsection Rigid body
+    set Contact shape = plane
+    set Shape point = 0, 0, {-R - 1e-5}
+    set Shape direction = 0, 0, 1
+  end
+end
+subsection Body ball
+  subsection Mesh
+    set Source = file
+    set File name = {inp}
+  end
+  subsection Material
+    set Model = elastic
+    subsection elastic
+      set Density = {rho}
+      set Young's modulus = {E}
+      set Poisson's ratio = {nu}
+    end
+  end
+  set Initial velocity = 0, 0, {-v}
+end
+{plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
+  set First body = floor
+  set Second body = ball
+  set Penalty scale factor = {penalty}
+end
+"""

@@ -226,7 +226,6 @@ namespace anvil::MaterialModel
                           (D[2] - d3) * (D[2] - d3) +
                           2. * (D[3] * D[3] + D[4] * D[4] + D[5] * D[5]);
         h[8] = std::sqrt(2. / 3. * dd);
-        R    = law.rate_factor(h[8]);
       }
 
     const double p = (s[0] + s[1] + s[2]) / 3.;
@@ -235,7 +234,10 @@ namespace anvil::MaterialModel
       xi[k] = s[k] - (k < 3 ? p : 0.) - h[k];
     const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
                       2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
-    const double q   = std::sqrt(1.5 * xx);
+    const double q = std::sqrt(1.5 * xx);
+    // As in the batch: the rate factor only beyond the static yield stress.
+    if (law.rate_effects && q > law.yield_stress(h[6], 1.))
+      R = law.rate_factor(h[8]);
     const double dep = law.plastic_increment(q, h[6], R, 3. * mu);
     if (dep == 0.)
       return;
@@ -273,9 +275,11 @@ namespace anvil::MaterialModel
         work[l]  = h[l][7];
         rate[l]  = h[l][8];
       }
-    // The back stress rotates with the material, like the stress.
+    // The back stress rotates with the material, like the stress (it is
+    // zero until the point first yields).
     for (unsigned int l = 0; l < W; ++l)
-      Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, alpha[0][l], alpha[1][l],
+      if (eps_p[l] > 0)
+        Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, alpha[0][l], alpha[1][l],
                                 alpha[2][l], alpha[3][l], alpha[4][l], alpha[5][l]);
     for (unsigned int l = 0; l < W; ++l)
       {
@@ -294,7 +298,6 @@ namespace anvil::MaterialModel
                             (D[2][l] - d3) * (D[2][l] - d3) +
                             2. * (D[3][l] * D[3][l] + D[4][l] * D[4][l] + D[5][l] * D[5][l]);
           rate[l] = std::sqrt(2. / 3. * dd);
-          R[l]    = law.rate_factor(rate[l]);
         }
     const double Hk = law.kinematic_modulus();
     for (unsigned int l = 0; l < W; ++l)
@@ -305,8 +308,13 @@ namespace anvil::MaterialModel
           xi[k] = s[k][l] - (k < 3 ? p : 0.) - alpha[k][l];
         const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
                           2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
-        const double norm   = std::sqrt(xx);
-        const double q      = std::sqrt(1.5) * norm;
+        const double norm = std::sqrt(xx);
+        const double q    = std::sqrt(1.5) * norm;
+        // The rate factor (a pow) only where the trial stress is beyond
+        // the static yield stress: R >= 1, so a point within it is elastic
+        // at any rate, and the elastic range pays no rate effects.
+        if (law.rate_effects && q > law.yield_stress(eps_p[l], 1.))
+          R[l] = law.rate_factor(rate[l]);
         const double excess = q - law.yield_stress(eps_p[l], R[l]);
         const double dep    = excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
         const double inv    = norm > 0 ? 1. / norm : 0.;

@@ -19,6 +19,8 @@
 #include <filesystem>
 #include <unistd.h>
 #include <map>
+#include <set>
+#include <sstream>
 
 namespace anvil
 {
@@ -698,5 +700,47 @@ namespace anvil
     if (status == 3)
       throw InputError(scene_file + ": the output directory '" + output_directory +
                        "' is a file; choose another 'Output directory' or 'Name'");
+  }
+
+
+  // What the step will evaluate, read from the flags the loop itself
+  // tests: a physics the scene does not contain is not computed.
+  std::string Simulator::step_contents() const
+  {
+    std::set<unsigned int> deformable, bulk, rate, erosion;
+    for (unsigned int g = 0; g < element_groups.size(); ++g)
+      {
+        const auto &group = element_groups[g];
+        if (group.get_material().is_rigid())
+          continue;
+        deformable.insert(group_body[g]);
+        if (group.bulk_viscosity())
+          bulk.insert(group_body[g]);
+        if (group.get_material().rate_dependent())
+          rate.insert(group_body[g]);
+        if (group.get_material().erodes())
+          erosion.insert(group_body[g]);
+      }
+    unsigned int pairs = 0;
+    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
+      pairs += pair_inactive[p] ? 0 : 1;
+    std::size_t trusses = 0;
+    for (const auto &r : rebars)
+      trusses += r.elements.size();
+    auto count = [](const std::size_t n, const std::string &what, const std::string &of) {
+      return n == 0 ? "no " + what :
+                      what + " in " + std::to_string(n) + " " +
+                        (n == 1 ? of : of == "body" ? std::string("bodies") : of + "s");
+    };
+    std::ostringstream s;
+    s << "elements of " << deformable.size() << " bod" << (deformable.size() == 1 ? "y" : "ies") << "; "
+      << count(bulk.size(), "bulk viscosity", "body") << "; " << count(rate.size(), "rate effects", "body")
+      << "; " << count(erosion.size(), "erosion", "body") << "; " << count(pairs, "contact", "pair") << "; "
+      << (rebars.empty() ? std::string("no bars") :
+                           std::to_string(trusses) + " bar elements in " + std::to_string(rebars.size()) +
+                             " rebar set" + (rebars.size() == 1 ? "" : "s"))
+      << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "
+      << (gravity.norm() > 0 ? "gravity" : "no gravity");
+    return s.str();
   }
 } // namespace anvil

@@ -75,9 +75,14 @@ namespace anvil
     Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
                         mpi_communicator,
                         ArrayView<double>(increments.data(), increments.size()));
-    // Reinforcement: replicated on every process, its energy counted once.
+    // Reinforcement: replicated on every process, its energy counted once;
+    // timed on its own (what follows is bookkeeping).
     if (!rebars.empty())
-      dt_crit = std::min(dt_crit, compute_rebar_forces(dt_previous));
+      {
+        t.stop();
+        TimerOutput::Scope bars(*timer, "rebar and bond");
+        dt_crit = std::min(dt_crit, compute_rebar_forces(dt_previous));
+      }
     energies.internal += increments[0];
     energies.hourglass += increments[1];
     energies.eroded += increments[2];
@@ -823,6 +828,7 @@ namespace anvil
                   ", " + Element::to_string(b.hourglass) + " hourglass control" :
                   std::string())
             << "\n";
+    pcout << "  the step computes: " << step_contents() << "\n";
     pcout << "  results in " << output_directory << "/" << std::endl;
 
     if (resume)

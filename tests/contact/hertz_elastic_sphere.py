@@ -17,7 +17,7 @@ elements), and the errors must be smaller there than at 8 x 8 x 16.
 """
 import math
 import os
-from anvil_test import (Checker, arguments, plane_condition, read_csv, run_anvil, write_ball,
+from anvil_test import (Checker, arguments, hertz_ball_scene, read_csv, run_anvil, write_ball,
                         write_scene)
 
 args = arguments()
@@ -33,51 +33,9 @@ t_c = 2.9432 * delta / v
 def run(n):
     name = f"ball_{n}"
     write_ball(os.path.join(args.work_dir, name + ".inp"), R, n, 1.15)
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Elastic quarter sphere dropped on a rigid plane (Hertz).
-set Bodies = floor, ball
-set Contact pairs = hit
-set Boundary conditions = sym_x, sym_y
-subsection Simulation
-  set End time = 0.012
-  set History interval = 2e-5
-  set Print wall times = false
-end
-subsection Body floor
-  subsection Mesh
-    set Lower corner = 0.2, 0.2, -0.1
-    set Upper corner = 0.21, 0.21, -0.09
-  end
-  subsection Material
-    set Model = rigid
-  end
-  subsection Rigid body
-    set Contact shape = plane
-    set Shape point = 0, 0, {-R - 1e-5}
-    set Shape direction = 0, 0, 1
-  end
-end
-subsection Body ball
-  subsection Mesh
-    set Source = file
-    set File name = {name}.inp
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-  set Initial velocity = 0, 0, {-v}
-end
-{plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
-  set First body = floor
-  set Second body = ball
-  set Penalty scale factor = 1.0
-end
-""")
+    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
+                      text=hertz_ball_scene(name + ".inp", R, E, nu, rho, v)
+                      + "subsection Simulation\n  set Print wall times = false\nend\n")
     code, out, err = run_anvil(args.anvil, prm, np=2, cwd=args.work_dir)
     if not c.check_true(f"{n} x {n} x {2 * n}: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()

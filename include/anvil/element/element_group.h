@@ -258,6 +258,12 @@ namespace anvil::Element
                        const double      *x,
                        double            *sigma) const;
 
+    /** Whether the group computes bulk viscosity (a coefficient > 0). */
+    bool bulk_viscosity() const
+    {
+      return bulk_linear > 0 || bulk_quadratic > 0;
+    }
+
   private:
     /** The reference loop, one element at a time, over [begin, end). */
     template <Formulation F, Integration I, HourglassType H>
@@ -283,10 +289,6 @@ namespace anvil::Element
     double                          bulk_quadratic = 0;
     /** (sqrt(1 + b_1^2) - b_1)^2: the step factor where tr D >= 0. */
     double                          bulk_dt_factor2_expansion = 1;
-    bool bulk_viscosity() const
-    {
-      return bulk_linear > 0 || bulk_quadratic > 0;
-    }
     /** The bulk viscosity pressure of the last step per point, for the
         trapezoidal viscous work. */
     std::vector<double> bulk_pressure;

@@ -235,6 +235,10 @@ namespace anvil::MaterialModel
     {
       return par.erosion;
     }
+    bool rate_dependent() const override
+    {
+      return par.rate_effects;
+    }
     bool point_failed(const double *history) const override;
     bool degrades() const override
     {

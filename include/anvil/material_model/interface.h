@@ -149,6 +149,14 @@ namespace anvil
         return false;
       }
 
+      /** Whether the stress depends on the strain rate (rate effects
+          asked for): the run's summary of what its step computes says
+          so, and a model without them computes no rate. */
+      virtual bool rate_dependent() const
+      {
+        return false;
+      }
+
       /** Whether the point with history @p history has failed. */
       virtual bool point_failed(const double *history) const
       {

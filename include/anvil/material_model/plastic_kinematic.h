@@ -135,6 +135,10 @@ namespace anvil::MaterialModel
     {
       return erosion;
     }
+    bool rate_dependent() const override
+    {
+      return law.rate_effects;
+    }
     bool point_failed(const double *history) const override
     {
       return history[6] >= law.failure_strain;

@@ -206,6 +206,10 @@ namespace anvil
         smallest stable steps and a warning for distorted ones (scaled
         Jacobian below 0.3), source/simulator/mesh_quality.cc. */
     void report_element_quality();
+    /** One line of what the step evaluates (element groups and which of
+        them carry bulk viscosity, rate effects and erosion; contact pairs;
+        bars; mass damping; gravity): the same flags that gate the loop. */
+    std::string step_contents() const;
     /** Make the output directory and remove the files of the earlier run
         there; with @p check_only, only report what would stop the run. */
     void prepare_output_directory(bool check_only = false);

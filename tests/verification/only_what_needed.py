@@ -1,0 +1,130 @@
+"""Only what a scene needs runs in its step.
+
+Each run prints one line of what its step computes ('the step computes:
+...', read from the flags that gate the loop) and TimerOutput's sections
+with their numbers of calls. Checked here:
+- the shipped rods: contact in 1 pair, bulk viscosity in both bodies, no
+  rate effects, no erosion, no bars; TimerOutput has a 'contact' section
+  entered once a step and no 'rebar and bond' section;
+- the rods without contact pairs: no 'contact' section at all;
+- the rods with bulk viscosity switched off: 'no bulk viscosity';
+- a dormant third body 100 m away with a contact pair against rod B: the
+  rods' histories (contact force, probes) equal those without it to 1e-8
+  (round-off: the third body renumbers the nodes, and with them the order
+  of the sums), and its pair never carries a force (its cost per element-cycle is
+  printed, not asserted: benchmarks/scene_costs.py measures it);
+- the steel bar with and without rate effects: 'rate effects in 1 body' and
+  'no rate effects';
+- the concrete pull-out: a 'rebar and bond' section entered once a step,
+  no 'contact' section.
+"""
+import os
+import re
+from anvil_test import (Checker, arguments, dormant_rod_scene, max_relative_difference, read_csv, run_anvil,
+                        write_scene)
+
+args = arguments()
+c = Checker("only what a scene needs runs in its step")
+work = args.work_dir
+src = os.path.abspath(args.source_dir)
+rod = os.path.join(src, "prm", "elastic_rod_impact", "elastic_rod_impact.prm")
+bar = os.path.join(src, "prm", "steel_bar_impact", "steel_bar_impact.prm")
+pull = os.path.join(src, "prm", "pull_out", "pull_out_concrete.prm")
+quiet = """
+subsection Simulation
+  set Output interval = 0
+  set Plots = false
+  set Print wall times = true
+end
+"""
+
+
+def run(name, scene, text):
+    prm = write_scene(os.path.join(work, name + ".prm"), include=scene, text=quiet + text)
+    code, out, err = run_anvil(args.anvil, prm, cwd=work)
+    if not c.check_true(f"{name}: anvil exits 0", code == 0, err.strip()[-300:]):
+        c.finish()
+    line = next((l for l in out.splitlines() if "the step computes:" in l), "")
+    sections = {m.group(1).strip(): (int(m.group(2)), float(m.group(3)))
+                for m in re.finditer(r"^\|\s*([a-z][a-z ]*?)\s*\|\s*(\d+)\s*\|\s*([0-9.e+-]+)s", out, re.M)}
+    d = os.path.join(work, "output", name)
+    s = read_csv(os.path.join(d, "summary.csv"))
+    s = dict(zip(s["quantity"], s["value"]))
+    print(f"  {name}: {line.strip()}")
+    print(f"    sections (calls): " + ", ".join(f"{k} {v[0]}" for k, v in sorted(sections.items())))
+    return dict(line=line, sections=sections, summary=s, dir=d)
+
+
+def says(name, r, *parts):
+    for p in parts:
+        c.check_true(f"{name}: the step line says '{p}'", p in r["line"])
+
+
+# The shipped rods.
+base = run("rods", rod, "")
+steps = int(base["summary"]["steps"])
+says("rods", base, "elements of 2 bodies", "bulk viscosity in 2 bodies", "no rate effects", "no erosion",
+     "contact in 1 pair", "no bars", "no mass damping", "no gravity")
+c.check_true("rods: 'contact' entered once a step (and once for the initial state)",
+             base["sections"].get("contact", (0, 0))[0] == steps + 1, str(base["sections"].get("contact")))
+c.check_true("rods: no 'rebar and bond' section", "rebar and bond" not in base["sections"])
+
+# No contact pairs: no contact code at all (the scene without its pair).
+with open(rod) as fh:
+    text = re.sub(r"subsection Contact pair impact.*?\nend\n", "", fh.read(), flags=re.S)
+text = text.replace("set Contact pairs = impact", "set Contact pairs =")
+lone = os.path.join(work, "rods_without_pair.prm")
+with open(lone, "w") as fh:
+    fh.write(text)
+alone = run("rods_no_contact", lone, "")
+says("rods without contact pairs", alone, "no contact")
+c.check_true("rods without contact pairs: no 'contact' section", "contact" not in alone["sections"],
+             ", ".join(alone["sections"]))
+
+# Bulk viscosity off.
+no_q = run("rods_no_bulk_viscosity", rod, "".join(f"""subsection Body {b}
+  subsection Bulk viscosity
+    set Linear coefficient = 0
+    set Quadratic coefficient = 0
+  end
+end
+""" for b in ("rod_a", "rod_b")))
+says("rods without bulk viscosity", no_q, "no bulk viscosity")
+
+# A dormant body far away, in contact pair with rod B.
+dormant = run("rods_dormant_body", rod, dormant_rod_scene())
+says("dormant body", dormant, "contact in 2 pairs", "elements of 3 bodies")
+for f in ("contact_impact.csv", "probe_face_a.csv", "probe_face_b.csv", "probe_centre_b.csv"):
+    c.check_below(f"dormant body: {f} against the run without it, largest relative difference",
+                  max_relative_difference(read_csv(os.path.join(base["dir"], f)),
+                                          read_csv(os.path.join(dormant["dir"], f))), 1e-8)
+far = read_csv(os.path.join(dormant["dir"], "contact_far_pair.csv"))
+c.check_below("dormant body: largest force of its pair [N]",
+              max(abs(v) for k in ("normal_force_x", "normal_force_y", "normal_force_z") for v in far[k]), 0.0)
+per_cycle = lambda r: 1e9 * sum(t for _, t in r["sections"].values()) / (
+    r["summary"]["elements"] * r["summary"]["steps"])
+print(f"  cost per element-cycle, all sections (noisy, not asserted): rods {per_cycle(base):.0f} ns, "
+      f"with the dormant body {per_cycle(dormant):.0f} ns (ratio {per_cycle(dormant) / per_cycle(base):.2f})")
+
+# Rate effects: only when asked for.
+short = "subsection Simulation\n  set End time = 1e-5\nend\n"
+rate = run("bar_rate", bar, short)
+says("steel bar with rate effects", rate, "rate effects in 1 body")
+no_rate = run("bar_no_rate", bar, short + """subsection Body bar
+  subsection Material
+    subsection plastic kinematic
+      set Strain rate effects = false
+    end
+  end
+end
+""")
+says("steel bar without rate effects", no_rate, "no rate effects")
+
+# Bars: their own section, entered once a step.
+bars = run("pull_out", pull, "subsection Simulation\n  set End time = 0.001\nend\n")
+says("pull-out", bars, "bar elements in 1 rebar set", "no contact")
+c.check_true("pull-out: 'rebar and bond' entered once a step (and once for the initial state)",
+             bars["sections"].get("rebar and bond", (0, 0))[0] == int(bars["summary"]["steps"]) + 1,
+             str(bars["sections"].get("rebar and bond")))
+c.check_true("pull-out: no 'contact' section", "contact" not in bars["sections"])
+c.finish()
