@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 
 namespace anvil::MaterialModel
 {
@@ -901,61 +902,85 @@ namespace anvil::MaterialModel
     for (unsigned int l = 0; l < W; ++l)
       Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sbar[0][l], sbar[1][l],
                                 sbar[2][l], sbar[3][l], sbar[4][l], sbar[5][l]);
+    // A batch whose points are all undamaged (d_t = d_c = 0: most of a
+    // structure's concrete before it cracks) takes the elastic trial as the
+    // nominal stress exactly (1 - d = 1), with no damage combination and
+    // no dissipation: in exact arithmetic an elastic step of an undamaged
+    // point dissipates nothing (the trapezoid's work equals the change of
+    // stored energy), so the sum of round-off is not kept either.
+    bool undamaged_batch = true;
     for (unsigned int l = 0; l < W; ++l)
-      {
-        stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
-                                      sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
-                                      sbar[5][l]);
-        const double tr = D[0][l] + D[1][l] + D[2][l];
-        for (unsigned int k = 0; k < 6; ++k)
-          {
-            dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
-            sbar[k][l] += dsig[k][l];
-          }
+      undamaged_batch &= (hv[4][l] == 0.) & (hv[5][l] == 0.);
+    auto trial = [&](auto undamaged_tag) {
+      constexpr bool undamaged = decltype(undamaged_tag)::value;
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
+                                        sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
+                                        sbar[5][l]);
+          const double tr = D[0][l] + D[1][l] + D[2][l];
+          for (unsigned int k = 0; k < 6; ++k)
+            {
+              dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
+              sbar[k][l] += dsig[k][l];
+            }
 
-        // The trial's principal values and the two surfaces at the static
-        // cohesions.
-        double s1, s3;
-        Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
-                                             sbar[4][l], sbar[5][l], s1, s3);
-        const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
-        const double s2   = 3. * mean - s1 - s3;
-        const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
-        const double q =
-          std::sqrt(1.5 * (a * a + b * b + c * c) +
-                    3. * (sbar[3][l] * sbar[3][l] + sbar[4][l] * sbar[4][l] + sbar[5][l] * sbar[5][l]));
-        // Inside at the static cohesions (first stage; see above), with a
-        // margin for the round-off of the principal values.
-        margin[l] = 1e-7 * std::max(std::abs(s1), std::abs(s3));
-        largest[l] = s1;
-        von_mises[l] = q;
-        mean_stress[l] = mean;
-        const bool inside = inside_surfaces(q, mean, s1, hv[2][l], hv[3][l], margin[l]);
+          // The trial's principal values and the two surfaces at the static
+          // cohesions.
+          double s1, s3;
+          Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
+                                               sbar[4][l], sbar[5][l], s1, s3);
+          const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
+          const double s2   = 3. * mean - s1 - s3;
+          const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
+          const double q =
+            std::sqrt(1.5 * (a * a + b * b + c * c) +
+                      3. * (sbar[3][l] * sbar[3][l] + sbar[4][l] * sbar[4][l] + sbar[5][l] * sbar[5][l]));
+          // Inside at the static cohesions (first stage; see above), with a
+          // margin for the round-off of the principal values.
+          margin[l] = 1e-7 * std::max(std::abs(s1), std::abs(s3));
+          largest[l] = s1;
+          von_mises[l] = q;
+          mean_stress[l] = mean;
+          const bool inside = inside_surfaces(q, mean, s1, hv[2][l], hv[3][l], margin[l]);
+          elastic[l]        = inside ? 1. : 0.;
+          if constexpr (undamaged)
+            {
+              (void)s2;
+              damage[l] = 0.;
+              for (unsigned int k = 0; k < 6; ++k)
+                nominal[k][l] = sbar[k][l];
+              continue;
+            }
 
-        // Damage of the existing d_t, d_c at the trial: tension weight r.
-        const double d_t = hv[4][l], d_c = hv[5][l];
-        const double num = std::max(s1, 0.) + std::max(s2, 0.) + std::max(s3, 0.);
-        const double den = std::abs(s1) + std::abs(s2) + std::abs(s3);
-        const double r   = den > 0 ? num / den : 0.;
-        auto intact = [&](const double w) { return intact_fraction(w, d_t, d_c); };
-        damage[l]           = 1. - intact(r);
-        const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
-        const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
-                     x4 = sbar[4][l], x5 = sbar[5][l];
-        double per_direction[6];
-        combine_per_direction(x0, x1, x2, x3, x4, x5, s1, s2, s3, intact(1.), intact(0.),
-                              per_direction);
-        for (unsigned int k = 0; k < 6; ++k)
-          nominal[k][l] = mixed ? per_direction[k] : (1. - damage[l]) * sbar[k][l];
-        double work = 0;
-        for (unsigned int k = 0; k < 6; ++k)
-          work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
-        dissipation[l] += work -
-                          stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
-                                        nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
-                          stored_old[l];
-        elastic[l] = inside ? 1. : 0.;
-      }
+          // Damage of the existing d_t, d_c at the trial: tension weight r.
+          const double d_t = hv[4][l], d_c = hv[5][l];
+          const double num = std::max(s1, 0.) + std::max(s2, 0.) + std::max(s3, 0.);
+          const double den = std::abs(s1) + std::abs(s2) + std::abs(s3);
+          const double r   = den > 0 ? num / den : 0.;
+          auto intact = [&](const double w) { return intact_fraction(w, d_t, d_c); };
+          damage[l]           = 1. - intact(r);
+          const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
+          const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
+                       x4 = sbar[4][l], x5 = sbar[5][l];
+          double per_direction[6];
+          combine_per_direction(x0, x1, x2, x3, x4, x5, s1, s2, s3, intact(1.), intact(0.),
+                                per_direction);
+          for (unsigned int k = 0; k < 6; ++k)
+            nominal[k][l] = mixed ? per_direction[k] : (1. - damage[l]) * sbar[k][l];
+          double work = 0;
+          for (unsigned int k = 0; k < 6; ++k)
+            work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
+          dissipation[l] += work -
+                            stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
+                                          nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
+                            stored_old[l];
+        }
+    };
+    if (undamaged_batch)
+      trial(std::true_type());
+    else
+      trial(std::false_type());
     if (par.rate_effects)
       {
         for (unsigned int l = 0; l < W; ++l)
