@@ -334,9 +334,8 @@ namespace anvil::Element
     // runs batched; the others element by element.
     const unsigned int n = n_elements();
     const bool         ul = (formulation == Formulation::updated_lagrangian);
-    // Elements that can erode go element by element: the batched loop has
-    // no per-lane exit, and failing materials (plasticity) are evaluated
-    // point by point anyway.
+    // Elements that can erode run batched too: an eroded element's lane
+    // is masked (see batched_loop).
     if (integration == Integration::full)
       return ul ? loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
                     x, v, dt, force, 0, n) :
@@ -345,21 +344,21 @@ namespace anvil::Element
     switch (hourglass)
       {
         case HourglassType::viscous:
-          return ul && alive.empty() ?
+          return ul ?
                    batched_loop<HourglassType::viscous>(x, v, dt, force) :
                    ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::viscous>(
                           x, v, dt, force, 0, n) :
                       loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::viscous>(
                         x, v, dt, force, 0, n);
         case HourglassType::stiffness:
-          return ul && alive.empty() ?
+          return ul ?
                    batched_loop<HourglassType::stiffness>(x, v, dt, force) :
                    ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::stiffness>(
                           x, v, dt, force, 0, n) :
                       loop<Formulation::total_lagrangian, Integration::one_point, HourglassType::stiffness>(
                         x, v, dt, force, 0, n);
         default:
-          return ul && alive.empty() ?
+          return ul ?
                    batched_loop<HourglassType::none>(x, v, dt, force) :
                    ul ? loop<Formulation::updated_lagrangian, Integration::one_point, HourglassType::none>(
                           x, v, dt, force, 0, n) :
@@ -906,13 +905,34 @@ namespace anvil::Element
     const bool             degrading = material.degrades() && n_hist > 0;
     const double           b1 = bulk_linear, b2 = bulk_quadratic,
                            expansion_factor2 = bulk_dt_factor2_expansion;
+    const bool             can_erode = !alive.empty();
 
     for (unsigned int e0 = 0; e0 < n_el; e0 += W)
       {
+        // The lanes: the batch's live elements; the padding of the last
+        // batch and eroded elements repeat a live element of the batch and
+        // are never written back (their history is a scratch copy), so an
+        // element's result does not depend on its neighbours in the batch.
         const unsigned int n_valid = std::min(W, n_el - e0);
         unsigned int       el[W];
+        bool               live[W];
+        int                first_live = -1;
+        for (unsigned int l = 0; l < n_valid; ++l)
+          if (!can_erode || alive[e0 + l])
+            {
+              first_live = e0 + l;
+              break;
+            }
+        if (first_live < 0)
+          continue;
+        unsigned int last_live = first_live;
         for (unsigned int l = 0; l < W; ++l)
-          el[l] = e0 + std::min(l, n_valid - 1);
+          {
+            live[l] = l < n_valid && (!can_erode || alive[e0 + l]);
+            if (live[l])
+              last_live = e0 + l;
+            el[l] = live[l] ? e0 + l : last_live;
+          }
 
         alignas(64) double xe[8][3][W], ve[8][3][W];
         for (unsigned int l = 0; l < W; ++l)
@@ -988,6 +1008,7 @@ namespace anvil::Element
             old[k][l] = sig[k][l] = stresses[6 * el[l] + k];
         alignas(64) double e_int[W] = {};
         alignas(64) double trD[W]   = {};
+        bool               failed[W] = {};
 
         if (dt > 0)
           {
@@ -1022,16 +1043,14 @@ namespace anvil::Element
             double *hist[W];
             for (unsigned int l = 0; l < W; ++l)
               hist[l] = n_hist ? &history[n_hist * el[l]] : nullptr;
-            if (n_hist && n_valid < W)
-              {
-                scratch_history.resize(n_hist * (W - n_valid));
-                for (unsigned int l = n_valid; l < W; ++l)
+            if (n_hist)
+              for (unsigned int l = 0; l < W; ++l)
+                if (!live[l])
                   {
-                    std::copy(hist[n_valid - 1], hist[n_valid - 1] + n_hist,
-                              &scratch_history[n_hist * (l - n_valid)]);
-                    hist[l] = &scratch_history[n_hist * (l - n_valid)];
+                    scratch_history.resize(n_hist * W);
+                    std::copy(hist[l], hist[l] + n_hist, &scratch_history[n_hist * l]);
+                    hist[l] = &scratch_history[n_hist * l];
                   }
-              }
             // Spin W_01, W_12, W_02; the Hughes-Winget rotation of the
             // stress across lanes (the material rotates its own history).
             alignas(64) double spin[3][W];
@@ -1045,6 +1064,11 @@ namespace anvil::Element
               Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l],
                                         sig[1][l], sig[2][l], sig[3][l], sig[4][l], sig[5][l]);
             material.update_cauchy_stress_batch(D, spin, dt, sig, hist);
+            // Failure (ABAQUS's rule for solids): the element goes when its
+            // integration point has failed.
+            if (can_erode)
+              for (unsigned int l = 0; l < W; ++l)
+                failed[l] = live[l] && material.point_failed(hist[l]);
             for (unsigned int l = 0; l < W; ++l)
               trD[l] = D[0][l] + D[1][l] + D[2][l];
             for (unsigned int l = 0; l < W; ++l)
@@ -1173,15 +1197,16 @@ namespace anvil::Element
                 for (unsigned int l = 0; l < W; ++l)
                   G[a][c][l] += r[a][0][l] * t[0][c][l] + r[a][1][l] * t[1][c][l] +
                                 r[a][2][l] * t[2][c][l] + r[a][3][l] * t[3][c][l];
-            // Write back the hourglass state of the valid lanes.
-            for (unsigned int l = 0; l < n_valid; ++l)
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int j = 0; j < 4; ++j)
-                  {
-                    if constexpr (H == HourglassType::stiffness)
-                      hourglass_modes[12 * el[l] + 4 * a + j] += dt * h[a][j][l];
-                    hourglass_resistance[12 * el[l] + 4 * a + j] = r[a][j][l];
-                  }
+            // Write back the hourglass state of the live lanes.
+            for (unsigned int l = 0; l < W; ++l)
+              if (live[l])
+                for (unsigned int a = 0; a < 3; ++a)
+                  for (unsigned int j = 0; j < 4; ++j)
+                    {
+                      if constexpr (H == HourglassType::stiffness)
+                        hourglass_modes[12 * el[l] + 4 * a + j] += dt * h[a][j][l];
+                      hourglass_resistance[12 * el[l] + 4 * a + j] = r[a][j][l];
+                    }
           }
 
         alignas(64) double fe[8][3][W];
@@ -1206,7 +1231,7 @@ namespace anvil::Element
                                           return xe[n][a][l];
                                         }) * g2[l] / 4.) *
                          mass_factor[el[l]];
-              if (l < n_valid)
+              if (live[l])
                 shape_factor[el[l]] = shape[l];
             }
         alignas(64) double dt2[W];
@@ -1217,21 +1242,36 @@ namespace anvil::Element
             dt2[l] = std::min(dt2[l], dt_hourglass2[l]);
           }
 
-        // Write back and scatter the valid lanes, in element order.
-        for (unsigned int l = 0; l < n_valid; ++l)
+        // Write back and scatter the live lanes, in element order.
+        for (unsigned int l = 0; l < W; ++l)
           {
+            if (!live[l])
+              continue;
             const unsigned int e = el[l];
             for (unsigned int k = 0; k < 6; ++k)
               stresses[6 * e + k] = sig[k][l];
-            internal_energy[e] += e_int[l];
             hourglass_energy[e] += e_hg[l];
-            result.internal_energy_increment += energy_weight[e] * e_int[l];
             result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
+            internal_energy[e] += e_int[l];
+            result.internal_energy_increment += energy_weight[e] * e_int[l];
             if (bulk_viscosity())
+              bulk_pressure[e] = qv[l];
+            if (failed[l])
               {
-                bulk_pressure[e] = qv[l];
-                result.viscous_energy_increment += energy_weight[e] * e_visc[l];
+                // As in the reference loop: a failed element stops carrying
+                // force from this step on, and the energy it holds moves to
+                // the eroded energy.
+                alive[e] = 0;
+                std::fill(&stresses[6 * e], &stresses[6 * (e + 1)], 0.);
+                const double w = energy_weight[e];
+                result.internal_energy_increment -= w * internal_energy[e];
+                result.hourglass_energy_increment -= w * hourglass_energy[e];
+                result.eroded_energy_increment += w * (internal_energy[e] + hourglass_energy[e]);
+                result.eroded_elements.push_back(global_id[e]);
+                continue;
               }
+            if (bulk_viscosity())
+              result.viscous_energy_increment += energy_weight[e] * e_visc[l];
             min_dt2 = std::min(min_dt2, dt2[l]);
             const unsigned int *en = &nodes[8 * e];
             for (unsigned int n = 0; n < 8; ++n)
