@@ -844,13 +844,7 @@ namespace anvil::Element
         // balance still closes.
         if (failed)
           {
-            alive[e] = 0;
-            std::fill(&stresses[6 * e * nq], &stresses[6 * (e + 1) * nq], 0.);
-            const double w = energy_weight[e];
-            result.internal_energy_increment -= w * internal_energy[e];
-            result.hourglass_energy_increment -= w * hourglass_energy[e];
-            result.eroded_energy_increment += w * (internal_energy[e] + hourglass_energy[e]);
-            result.eroded_elements.push_back(global_id[e]);
+            erode(e, nq, result);
             continue;
           }
 
@@ -876,6 +870,21 @@ namespace anvil::Element
       }
     result.critical_time_step = std::sqrt(min_dt2);
     return result;
+  }
+
+
+  // A failed element's stresses go to zero and the energy it holds (strain,
+  // plastic and hourglass work) moves from the internal and hourglass
+  // energies to the eroded one.
+  void ElementGroup::erode(const unsigned int e, const unsigned int nq, LoopResult &result)
+  {
+    alive[e] = 0;
+    std::fill(&stresses[6 * e * nq], &stresses[6 * (e + 1) * nq], 0.);
+    const double w = energy_weight[e];
+    result.internal_energy_increment -= w * internal_energy[e];
+    result.hourglass_energy_increment -= w * hourglass_energy[e];
+    result.eroded_energy_increment += w * (internal_energy[e] + hourglass_energy[e]);
+    result.eroded_elements.push_back(global_id[e]);
   }
 
 
@@ -1261,13 +1270,7 @@ namespace anvil::Element
                 // As in the reference loop: a failed element stops carrying
                 // force from this step on, and the energy it holds moves to
                 // the eroded energy.
-                alive[e] = 0;
-                std::fill(&stresses[6 * e], &stresses[6 * (e + 1)], 0.);
-                const double w = energy_weight[e];
-                result.internal_energy_increment -= w * internal_energy[e];
-                result.hourglass_energy_increment -= w * hourglass_energy[e];
-                result.eroded_energy_increment += w * (internal_energy[e] + hourglass_energy[e]);
-                result.eroded_elements.push_back(global_id[e]);
+                erode(e, 1, result);
                 continue;
               }
             if (bulk_viscosity())

@@ -278,6 +278,8 @@ namespace anvil::Element
         8 elements in structure-of-arrays form, vectorised across them. */
     template <HourglassType H>
     LoopResult batched_loop(const double *x, const double *v, double dt, double *force);
+    /** Erode element @p e (with @p nq points) in this step's @p result. */
+    void erode(unsigned int e, unsigned int nq, LoopResult &result);
 
     const MaterialModel::Interface &material;
     const Formulation               formulation;
