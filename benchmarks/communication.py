@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""MPI traffic of a step, counted: bytes each rank sends and messages per
+step on 1, 2, 4 and 8 processes, for the production column
+(prm/rc_column_impact, 21,600 elements, one contact pair, bars) and a
+10^5-element block pressed on another (one contact pair of 2 x 40 x 40
+faces). More processes than cores is fine: this counts, it does not time.
+
+    /usr/bin/python3 benchmarks/communication.py --anvil build/anvil
+
+Each scene runs twice on each number of processes, to two end times, with
+build/benchmarks/libanvil_mpi_counts.so preloaded (benchmarks/mpi_counts.cc,
+a PMPI layer that counts what each rank sends); the difference of the
+counts over the difference of the steps is the step's own traffic (setup
+and the final output cancel). Point-to-point: messages and bytes (the
+ghost layer of the partition: positions and velocities of the nodes of
+ghost cells). Collectives: calls and the bytes each rank puts in
+(reductions of energies and of the stable step, and the contact pairs'
+gather of every pair node's position to every rank). Nothing is
+asserted; doc/performance.md turns the figures into a scaling note.
+"""
+import argparse
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOURCE = os.path.abspath(os.path.join(HERE, ".."))
+sys.path.insert(0, os.path.join(SOURCE, "tests"))
+from anvil_test import elastic_box_body  # noqa: E402
+
+COLUMN = os.path.join(SOURCE, "prm", "rc_column_impact", "rc_column_impact.prm")
+
+
+def blocks_scene(path):
+    # Two steel blocks 1 m x 1 m x 0.8 m, 40 x 40 x 32 elements each
+    # (102,400 in all), the upper one moving down at 1 m/s onto the lower.
+    with open(path, "w") as fh:
+        fh.write("set Bodies = lower, upper\nset Contact pairs = press\n"
+                 + elastic_box_body("lower", (0, 0, 0), (1, 1, 0.8), (40, 40, 32), 7850, 2.06e11, 0.3)
+                 + elastic_box_body("upper", (0, 0, 0.8), (1, 1, 1.6), (40, 40, 32), 7850, 2.06e11, 0.3)
+                 + "subsection Body upper\n  set Initial velocity = 0, 0, -1\nend\n"
+                 + "subsection Contact pair press\n  set First body = lower\n  set Second body = upper\nend\n")
+    return path
+
+
+def counts(anvil, lib, work, scene, name, np, end_time):
+    prefix = os.path.join(work, f"{name}_np{np}_{end_time:g}")
+    for r in range(np):
+        if os.path.exists(f"{prefix}.{r}"):
+            os.remove(f"{prefix}.{r}")
+    cmd = ["mpirun", "--oversubscribe", "-np", str(np), "-x", f"ANVIL_MPI_COUNTS={prefix}",
+           "-x", f"LD_PRELOAD={lib}", anvil, scene]
+    for s in (f"Simulation/Name={name}_np{np}", f"Simulation/End time={end_time}", "Simulation/Output interval=0",
+              "Simulation/History interval=1", "Simulation/Plots=false", "Simulation/Overwrite existing output=true",
+              "Simulation/End kinetic energy fraction=0"):
+        cmd += ["--set", s]
+    r = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"{name} on {np}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
+    with open(os.path.join(work, "output", f"{name}_np{np}", "summary.csv")) as fh:
+        summary = dict(l.strip().split(",") for l in fh.readlines()[1:])
+    ranks = []
+    for k in range(np):
+        with open(f"{prefix}.{k}") as fh:
+            ranks.append({l.split()[0]: float(l.split()[1]) for l in fh})
+    return float(summary["steps"]), float(summary["elements"]), ranks
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--anvil", default=os.path.join(SOURCE, "build", "anvil"))
+    p.add_argument("--library", default=None, help="libanvil_mpi_counts.so (default: next to anvil)")
+    p.add_argument("--work-dir", default="output/communication")
+    p.add_argument("--processes", default="1,2,4,8")
+    a = p.parse_args()
+    anvil = os.path.abspath(a.anvil)
+    lib = os.path.abspath(a.library or os.path.join(os.path.dirname(anvil), "benchmarks", "libanvil_mpi_counts.so"))
+    work = os.path.abspath(a.work_dir)
+    os.makedirs(work, exist_ok=True)
+    scenes = [("column", COLUMN, (1e-5, 5e-5)), ("blocks", blocks_scene(os.path.join(work, "blocks.prm")), (2e-5, 1e-4))]
+    print("| scene | processes | elements | steps counted | p2p messages / rank / step | p2p bytes / rank / step "
+          "| collective calls / step | collective bytes / rank / step | largest rank's bytes / step |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for name, scene, (t1, t2) in scenes:
+        for np in (int(x) for x in a.processes.split(",")):
+            s1, elements, c1 = counts(anvil, lib, work, scene, name, np, t1)
+            s2, _, c2 = counts(anvil, lib, work, scene, name, np, t2)
+            steps = s2 - s1
+            per = [{k: (r2[k] - r1[k]) / steps for k in r2} for r1, r2 in zip(c1, c2)]
+            mean = lambda k: sum(r[k] for r in per) / np
+            largest = max(r["p2p_bytes"] + r["collective_bytes"] for r in per)
+            print(f"| {name} | {np} | {elements:.0f} | {steps:.0f} | {mean('p2p_messages'):.1f} | "
+                  f"{mean('p2p_bytes'):.0f} | {mean('collective_calls'):.1f} | {mean('collective_bytes'):.0f} | "
+                  f"{largest:.0f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
