@@ -78,6 +78,17 @@ namespace anvil::Rebar
     prm.declare_entry("Bond damage rate", "200", Patterns::Double(0.),
                       "h_dmg of seed Eq. (68) per unit of the slip D accumulated beyond "
                       "the elastic range (0.2 per mm). Units: 1/m.");
+    prm.declare_entry("Mass scaling time step", "0", Patterns::Double(0.),
+                      "Bond-slip bars: the smallest stable step their elements "
+                      "may set. An element whose L / c is below it gets "
+                      "nonstructural mass, (step c / L)^2 times its own, spread "
+                      "to its two nodes, so that it no longer sets the step "
+                      "(LS-DYNA's selective mass scaling). The added mass is "
+                      "printed and in summary.csv, and moves with the bars (its "
+                      "kinetic energy is in the balance). Steel bars of the "
+                      "concrete's element length set a step 0.77 times the "
+                      "concrete's; doc/accuracy.md measures what scaling them "
+                      "costs in accuracy. 0: off. Units: s.");
     prm.declare_entry("Pull velocity", "0, 0, 0", Patterns::List(Patterns::Double(), 3, 3),
                       "Bond-slip: velocity imposed on the last node of every bar from "
                       "t = 0 (a pull-out test); zero: none. Units: m/s.");
@@ -122,6 +133,7 @@ namespace anvil::Rebar
     bond_modulus = prm.get_double("Bond modulus");
     slip_at_peak = prm.get_double("Slip at bond strength");
     damage_rate  = prm.get_double("Bond damage rate");
+    mass_scaling_step = prm.get_double("Mass scaling time step");
     {
       const Point<3> v = point("Pull velocity");
       pull_velocity    = v;
@@ -129,6 +141,9 @@ namespace anvil::Rebar
     }
     if (bond_slip && (!(bond_modulus > 0) || !(slip_at_peak > 0)))
       throw InputError(at + "'Bond modulus' and 'Slip at bond strength' must be positive");
+    if (mass_scaling_step > 0 && !bond_slip)
+      throw InputError(at + "'Mass scaling time step' needs 'Coupling = bond-slip' (perfectly "
+                            "bonded bars carry no mass of their own: it is the host's)");
     if (pulled && !bond_slip)
       throw InputError(at + "'Pull velocity' needs 'Coupling = bond-slip' (perfectly bonded "
                             "bars follow the host)");

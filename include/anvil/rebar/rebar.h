@@ -64,6 +64,9 @@ namespace anvil::Rebar
     double bond_modulus  = 5e10;
     double slip_at_peak  = 3.6e-4;
     double damage_rate   = 200.;
+    /** Bond-slip: the smallest step the bar elements may set; elements
+        below it get nonstructural mass (selective mass scaling); 0: off. */
+    double mass_scaling_step = 0;
     /** Velocity imposed on the last node of every bar (pull-out tests). */
     dealii::Tensor<1, 3> pull_velocity;
     bool                 pulled = false;
@@ -114,6 +117,11 @@ namespace anvil::Rebar
         per node the plastic slip, accumulated slip beyond the elastic
         range, bond stress, slip, bond force; the pulled nodes. */
     std::vector<double>       xs, vs, fs, ms, xh;
+    /** Per element: sqrt of its mass factor (1, or more where the bars'
+        mass is scaled), the factor on its stable step L / c. */
+    std::vector<double> step_factor;
+    /** The nonstructural mass added by mass scaling. Units: kg. */
+    double added_mass = 0;
     std::vector<double>       plastic_slip, damage, bond_stress, slip, bond_force;
     std::vector<bool> pulled;
     /** Reaction at the pulled nodes' dofs in the last step (3 per node). */
