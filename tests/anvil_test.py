@@ -250,6 +250,20 @@ def plane_condition(name, body, axis, at=0.0, components=None):
             f"  set Components = {components or axis}\nend\n")
 
 
+def elastic_material(density, E, nu):
+    """Scene text of a body's 'subsection Material': elastic, with its
+    density, Young's modulus and Poisson's ratio (indented for a body)."""
+    return f"""  subsection Material
+    set Model = elastic
+    subsection elastic
+      set Density         = {density:g}
+      set Young's modulus = {E:g}
+      set Poisson's ratio = {nu:g}
+    end
+  end
+"""
+
+
 def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
     """Scene text of a body 'name': an elastic box from 'lower' to 'upper'
     (3 numbers each) with 'subdivisions' (3 integers)."""
@@ -261,15 +275,7 @@ def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
     set Upper corner = {join(upper)}
     set Subdivisions = {join(subdivisions)}
   end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density         = {density:g}
-      set Young's modulus = {E:g}
-      set Poisson's ratio = {nu:g}
-    end
-  end
-end
+{elastic_material(density, E, nu)}end
 """
 
 
@@ -312,15 +318,7 @@ subsection Body ball
     set Source = file
     set File name = {inp}
   end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-  set Initial velocity = 0, 0, {-v}
+{elastic_material(rho, E, nu)}  set Initial velocity = 0, 0, {-v}
 end
 {plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
   set First body = floor

@@ -225,6 +225,10 @@ namespace anvil
                 T.host_owned[i] = it->second.second;
               }
           }
+        // The factor on each element's stable step L / c: 1 unless mass
+        // scaling raises it (below).
+        T.step_factor.assign(T.elements.size(), 1.);
+        T.added_mass = 0;
         if (layout.bond_slip)
           {
             const unsigned int n = T.X.size();
@@ -249,8 +253,6 @@ namespace anvil
             // Selective mass scaling: an element whose step L / c is below
             // the one asked for gets f - 1 times its own mass on top, half
             // at each node, f = (step c / L)^2; its step is then sqrt(f) L / c.
-            T.step_factor.assign(T.elements.size(), 1.);
-            T.added_mass = 0;
             if (layout.mass_scaling_step > 0)
               {
                 const double c = std::sqrt(layout.material->youngs_modulus() /
@@ -389,7 +391,7 @@ namespace anvil
                 fr[3 * a + q] += f[q];
                 fr[3 * b + q] -= f[q];
               }
-            dt_crit = std::min(dt_crit, T.step_factor.empty() ? l / c : T.step_factor[k] * l / c);
+            dt_crit = std::min(dt_crit, T.step_factor[k] * l / c);
           }
         energies.internal += work;
         if (slip)

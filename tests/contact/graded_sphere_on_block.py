@@ -29,9 +29,9 @@ worst pairing); np = 2 equals np = 1 (contact history, 1e-8).
 """
 import math
 import os
-from anvil_test import (Checker, arguments, graded, lumped_masses, max_relative_difference,
-                        plane_condition, read_csv, run_anvil, write_ball, write_hexahedra,
-                        write_scene)
+from anvil_test import (Checker, arguments, elastic_material, graded, lumped_masses,
+                        max_relative_difference, plane_condition, read_csv, run_anvil, write_ball,
+                        write_hexahedra, write_scene)
 
 args = arguments()
 c = Checker("graded sphere on a graded block: Hertz, and the steps the springs need")
@@ -108,15 +108,7 @@ conditions = (plane_condition("sym_x", "ball", "x") + plane_condition("sym_y", "
               plane_condition("base", "block", "z", at=-R - gap - size, components="x, y, z"))
 
 
-material = f"""  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-"""
+material = elastic_material(rho, E, nu)
 
 
 def run(np):
