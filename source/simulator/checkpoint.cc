@@ -33,12 +33,15 @@ namespace anvil
                                              std::vector<HistoryFile> &probes,
                                              std::vector<HistoryFile> &contacts,
                                              std::vector<HistoryFile> &rigids,
-                                             std::vector<HistoryFile> &rebars)
+                                             const std::vector<std::unique_ptr<ForceContributor>> &families)
     {
       std::vector<HistoryFile *> files{&energy, &momentum, &reaction, &erosion};
-      for (auto *list : {&probes, &contacts, &rigids, &rebars})
+      for (auto *list : {&probes, &contacts, &rigids})
         for (auto &f : *list)
           files.push_back(&f);
+      for (const auto &family : families)
+        for (auto *f : family->history_files())
+          files.push_back(f);
       return files;
     }
   } // namespace
@@ -61,8 +64,8 @@ namespace anvil
       c.serialize(ar);
     for (auto &b : bodies)
       b.rigid.serialize(ar);
-    for (auto &t : rebars)
-      t.serialize(ar);
+    for (auto &family : families)
+      family->serialize(ar);
   }
 
 
@@ -120,9 +123,11 @@ namespace anvil
     std::vector<long>        lengths;
     std::vector<std::string> names;
     std::vector<unsigned int> counts{(unsigned int)probe_files.size(), (unsigned int)contact_files.size(),
-                                     (unsigned int)rigid_files.size(), (unsigned int)rebar_files.size()};
+                                     (unsigned int)rigid_files.size()};
+    for (const auto &family : families)
+      counts.push_back(family->history_files().size());
     for (auto *f : history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
-                                 contact_files, rigid_files, rebar_files))
+                                 contact_files, rigid_files, families))
       {
         lengths.push_back(f->is_open() ? f->bytes_written() : -1);
         names.push_back(f->is_open() ? fs::path(f->file()).filename().string() : "");
@@ -269,9 +274,10 @@ namespace anvil
         probe_files.resize(counts[0]);
         contact_files.resize(counts[1]);
         rigid_files.resize(counts[2]);
-        rebar_files.resize(counts[3]);
+        for (unsigned int f = 0; f < families.size() && 3 + f < counts.size(); ++f)
+          families[f]->resize_history_files(counts[3 + f]);
         const auto files = history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
-                                         contact_files, rigid_files, rebar_files);
+                                         contact_files, rigid_files, families);
         for (unsigned int k = 0; k < files.size() && k < lengths.size(); ++k)
           if (lengths[k] >= 0)
             files[k]->resume(output_directory + "/" + names[k], lengths[k]);

@@ -64,18 +64,8 @@ namespace anvil
           mass.local_element(i) * velocity.local_element(i) -
           0.5 * dt * (force.local_element(i) + damping_force(i));
     Utilities::MPI::sum(momentum, mpi_communicator, momentum);
-    // Bond-slip bars (replicated): their momentum with the host body's.
-    for (unsigned int r = 0; r < rebars.size(); ++r)
-      if (rebar_layouts[r].bond_slip)
-        {
-          unsigned int host = 0;
-          while (bodies[host].name != rebar_layouts[r].host)
-            ++host;
-          const auto &T = rebars[r];
-          for (unsigned int j = 0; j < T.vs.size(); ++j)
-            momentum[3 * host + j % 3] +=
-              T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
-        }
+    for (const auto &family : families)
+      family->add_momentum(dt, momentum);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       if (bodies[b].is_rigid())
         {
@@ -193,8 +183,9 @@ namespace anvil
                          << '\n';
           ++r;
         }
-    if (!rebars.empty())
-      write_rebar_history(t);
+    for (auto &family : families)
+      if (!family->empty())
+        family->write_history(t);
     if (!erosion_rows.empty())
       {
         if (!erosion_file.is_open())
@@ -395,8 +386,9 @@ namespace anvil
       {
         pvd_records.emplace_back(t, frame + ".pvtu");
         write_frame_index();
-        if (!rebars.empty())
-          output_rebar(t, output_count);
+        for (auto &family : families)
+          if (!family->empty())
+            family->output_frame(t, output_count);
         ++output_count;
       }
   }
@@ -485,9 +477,12 @@ namespace anvil
     };
     for (auto *f : {&energy_file, &momentum_file, &reaction_file, &erosion_file})
       flush(*f);
-    for (auto *files : {&probe_files, &contact_files, &rigid_files, &rebar_files})
+    for (auto *files : {&probe_files, &contact_files, &rigid_files})
       for (auto &f : *files)
         flush(f);
+    for (auto &family : families)
+      for (auto *f : family->history_files())
+        flush(*f);
   }
 
 

@@ -9,6 +9,7 @@
  * misspelled entry is an error, not a silently ignored line.
  */
 #include <anvil/mesh/mesh_file.h>
+#include <anvil/rebar/reinforcement.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 #include <anvil/utilities/plugins.h>
@@ -824,7 +825,7 @@ namespace anvil
                        "and summary.csv say how many steps they set)."
                     << std::endl;
           }
-        rebar_layouts.resize(rebar_names.size());
+        std::vector<Rebar::Layout> rebar_layouts(rebar_names.size());
         for (unsigned int i = 0; i < rebar_names.size(); ++i)
           {
             prm.enter_subsection("Rebar " + rebar_names[i]);
@@ -832,6 +833,8 @@ namespace anvil
             prm.leave_subsection();
             check_body(rebar_layouts[i].host, "Rebar " + rebar_names[i]);
           }
+        families.clear();
+        families.push_back(std::make_unique<Rebar::Reinforcement>(*this, std::move(rebar_layouts)));
         probes.resize(probe_names.size());
         for (unsigned int i = 0; i < probe_names.size(); ++i)
           {

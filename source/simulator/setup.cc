@@ -172,7 +172,8 @@ namespace anvil
     make_grid();
     setup_system();
     setup_element_groups();
-    setup_rebar();
+    for (auto &family : families)
+      family->setup();
     assemble_lumped_mass();
     setup_boundary_conditions();
     setup_rigid_bodies();
@@ -303,7 +304,8 @@ namespace anvil
     eighths.update_ghost_values();
     for (auto &g : element_groups)
       g.set_nodal_mass_ratio(eighths.begin());
-    add_rebar_mass();
+    for (const auto &family : families)
+      family->add_mass(mass);
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
       AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
   }
@@ -724,9 +726,6 @@ namespace anvil
     unsigned int pairs = 0;
     for (unsigned int p = 0; p < contact_pairs.size(); ++p)
       pairs += pair_inactive[p] ? 0 : 1;
-    std::size_t trusses = 0;
-    for (const auto &r : rebars)
-      trusses += r.elements.size();
     auto count = [](const std::size_t n, const std::string &what, const std::string &of) {
       return n == 0 ? "no " + what :
                       what + " in " + std::to_string(n) + " " +
@@ -736,9 +735,10 @@ namespace anvil
     s << "elements of " << deformable.size() << " bod" << (deformable.size() == 1 ? "y" : "ies") << "; "
       << count(bulk.size(), "bulk viscosity", "body") << "; " << count(rate.size(), "rate effects", "body")
       << "; " << count(erosion.size(), "erosion", "body") << "; " << count(pairs, "contact", "pair") << "; "
-      << (rebars.empty() ? std::string("no bars") :
-                           std::to_string(trusses) + " bar elements in " + std::to_string(rebars.size()) +
-                             " rebar set" + (rebars.size() == 1 ? "" : "s"))
+      ;
+    for (const auto &family : families)
+      s << family->describe();
+    s
       << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "
       << (gravity.norm() > 0 ? "gravity" : "no gravity");
     return s.str();

@@ -157,11 +157,8 @@ namespace anvil
       // have needed, and how many steps the springs made smaller.
       out << "steps_elements_only," << summary.element_steps << '\n';
       out << "contact_limited_steps," << summary.contact_limited_steps << '\n';
-      double added_mass = 0;
-      for (const auto &T : rebars)
-        added_mass += T.added_mass;
-      if (added_mass > 0)
-        out << "bar_added_mass_kg," << added_mass << '\n';
+      for (const auto &family : families)
+        family->write_summary(out);
       out << "elements," << triangulation.n_global_active_cells() << '\n';
       out << "processes," << Utilities::MPI::n_mpi_processes(mpi_communicator) << '\n';
     }

@@ -77,12 +77,13 @@ namespace anvil
                         ArrayView<double>(increments.data(), increments.size()));
     // Reinforcement: replicated on every process, its energy counted once;
     // timed on its own (what follows is bookkeeping).
-    if (!rebars.empty())
-      {
-        t.stop();
-        TimerOutput::Scope bars(*timer, "rebar and bond");
-        dt_crit = std::min(dt_crit, compute_rebar_forces(dt_previous));
-      }
+    t.stop();
+    for (auto &family : families)
+      if (!family->empty())
+        {
+          TimerOutput::Scope section(*timer, family->name());
+          dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
+        }
     energies.internal += increments[0];
     energies.hourglass += increments[1];
     energies.eroded += increments[2];
@@ -355,18 +356,19 @@ namespace anvil
       }
     std::vector<double> sums = {kinetic, work, power};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
-    double rigid_kinetic = 0, rigid_work = 0, rigid_power = 0;
+    OwnMotion own;
     if (!rigid_dof.empty())
-      advance_rigid_bodies(dt_previous, dt, rigid_kinetic, rigid_work, rigid_power);
-    if (!rebars.empty())
-      update_rebar_velocity(dt_previous, dt, rigid_kinetic, rigid_work, rigid_power);
-    energies.kinetic = 0.5 * sums[0] + rigid_kinetic;
-    energies.external_work += sums[1] + rigid_work;
+      advance_rigid_bodies(dt_previous, dt, own.kinetic, own.work, own.power);
+    for (auto &family : families)
+      if (!family->empty())
+        family->update_velocity(dt_previous, dt, own);
+    energies.kinetic = 0.5 * sums[0] + own.kinetic;
+    energies.external_work += sums[1] + own.work;
     // The identity at time n holds with the step-change terms of the steps
     // before n; this step's is booked at n+1. The last call (dt = 0, the
     // synchronisation of the velocities) needs none: K^n is exact there.
     energies.step_change += pending_step_change;
-    pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + rigid_power) : 0.;
+    pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + own.power) : 0.;
   }
 
 
@@ -450,8 +452,9 @@ namespace anvil
     const double      *v = velocity.begin();
     for (unsigned int i = 0; i < n; ++i)
       x[i] += dt * v[i];
-    if (!rebars.empty())
-      update_rebar_position(dt);
+    for (auto &family : families)
+      if (!family->empty())
+        family->update_position(dt);
     // Work of gravity over the step, m g . (x^{n+1} - x^n): exact for a
     // constant force.
     if (gravity.norm() > 0)
@@ -868,9 +871,8 @@ namespace anvil
           if (rigid_dof.empty() || !rigid_dof[i])
             kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
         energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
-        for (unsigned int r = 0; r < rebars.size(); ++r)
-          for (unsigned int j = 0; j < rebars[r].vs.size(); ++j)
-            energies.kinetic += 0.5 * rebars[r].ms[j / 3] * rebars[r].vs[j] * rebars[r].vs[j];
+        for (const auto &family : families)
+          family->add_kinetic_energy(energies.kinetic);
         // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
         for (const auto &b : bodies)
           if (b.is_rigid())

@@ -10,6 +10,8 @@
 #include <anvil/element/element_group.h>
 #include <anvil/mesh/body.h>
 #include <anvil/rebar/rebar.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/simulator_access.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
@@ -32,8 +34,6 @@
 
 namespace anvil
 {
-  using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
-
   /** Energies of the whole scene (seed Eq. (21)). Units: J. */
   struct Energies
   {
@@ -98,6 +98,8 @@ namespace anvil
 
   class Simulator
   {
+    friend class SimulatorAccess;
+
   public:
     /**
      * Read the scene @p parameter_file. Throws InputError with a one-line
@@ -188,19 +190,6 @@ namespace anvil
     void setup_boundary_conditions();
     void setup_contact();
     void setup_rigid_bodies();
-    // Reinforcement (source/simulator/rebar.cc)
-    void   setup_rebar();
-    double compute_rebar_forces(double dt_previous);
-    void   add_rebar_mass();
-    void   write_rebar_history(double time);
-    /** rebar_NAME_NNNN.vtu (line cells: axial force, stress, effective
-        plastic strain) and rebar_NAME.pvd, written by rank 0. */
-    void   output_rebar(double time, unsigned int count);
-    /** Bond-slip bars: advance their nodes (leapfrog, replicated); the
-        kinetic energy at time n is returned through @p kinetic. */
-    void   update_rebar_velocity(double dt_previous, double dt, double &kinetic, double &work,
-                                 double &step_change);
-    void   update_rebar_position(double dt);
     void setup_probes();
     /** At the start of a run and in --check: the elements with the
         smallest stable steps and a warning for distorted ones (scaled
@@ -389,9 +378,10 @@ namespace anvil
     std::vector<BoundaryCondition>        boundary_conditions;
     std::vector<Contact::PenaltyContact>  contact_pairs;
     std::vector<Probe>                    probes;
-    std::vector<Rebar::Layout>            rebar_layouts;
-    std::vector<Rebar::Trusses>           rebars;
-    std::vector<HistoryFile>              rebar_files;
+    /** The families that add forces beside the element groups and the
+        contact pairs, in the order the step calls them (today: the
+        reinforcement; ForceContributor). */
+    std::vector<std::unique_ptr<ForceContributor>> families;
 
     // Discretisation
     dealii::parallel::distributed::Triangulation<3> triangulation;

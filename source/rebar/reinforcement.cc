@@ -3,6 +3,7 @@
  * Reinforcement in the simulator: truss elements embedded in a host body
  * with perfect bond (seed sections 5.1, 5.3, 5.4). See rebar/rebar.h.
  */
+#include <anvil/rebar/reinforcement.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/vtu_file.h>
 #include <anvil/utilities/input_error.h>
@@ -20,7 +21,7 @@
 #include <sstream>
 #include <map>
 
-namespace anvil
+namespace anvil::Rebar
 {
   using namespace dealii;
 
@@ -34,7 +35,7 @@ namespace anvil
       xi = {{0., 0., 0.}};
       for (unsigned int it = 0; it < 20; ++it)
         {
-          const auto   N = Rebar::Trusses::shape_values(xi);
+          const auto   N = Trusses::shape_values(xi);
           Tensor<1, 3> r;
           Tensor<2, 3> J;
           for (unsigned int I = 0; I < 8; ++I)
@@ -77,17 +78,29 @@ namespace anvil
   // claims are gathered, and a node on a face shared by several cells goes
   // to the cell with the smallest scene-wide id, so every partition embeds
   // it the same way.
-  void Simulator::setup_rebar()
+  Reinforcement::Reinforcement(Simulator &simulator, std::vector<Layout> layouts)
+    : ForceContributor(simulator)
+    , layouts(std::move(layouts))
+  {}
+
+
+  void Reinforcement::setup()
   {
+    const auto        &bodies           = get_bodies();
+    const std::string &scene_file       = get_scene_file();
+    const auto        &dof_handler      = get_dof_handler();
+    const VectorType  &position         = get_position();
+    const MPI_Comm     mpi_communicator = get_mpi_communicator();
+    const auto        &pcout            = get_pcout();
     namespace bg  = boost::geometry;
     namespace bgi = boost::geometry::index;
     using BPoint  = bg::model::point<double, 3, bg::cs::cartesian>;
     using Box     = bg::model::box<BPoint>;
-    rebars.assign(rebar_layouts.size(), {});
-    for (unsigned int r = 0; r < rebar_layouts.size(); ++r)
+    bars.assign(layouts.size(), {});
+    for (unsigned int r = 0; r < layouts.size(); ++r)
       {
-        const auto    &layout = rebar_layouts[r];
-        auto          &T      = rebars[r];
+        const auto    &layout = layouts[r];
+        auto          &T      = bars[r];
         unsigned int   host   = 0;
         while (bodies[host].name != layout.host)
           ++host;
@@ -303,19 +316,19 @@ namespace anvil
 
   // Rebar mass m_r = rho A (half the adjacent element lengths) to the host
   // nodes as N_I m_r: the embedded constraint conserves momentum.
-  void Simulator::add_rebar_mass()
+  void Reinforcement::add_mass(VectorType &mass) const
   {
-    for (unsigned int r = 0; r < rebars.size(); ++r)
+    for (unsigned int r = 0; r < bars.size(); ++r)
       {
-        if (rebar_layouts[r].bond_slip)
+        if (layouts[r].bond_slip)
           continue; // the bars' own nodes carry their mass
-        const auto         &T   = rebars[r];
-        const double        rho = rebar_layouts[r].material->density();
-        const double        A   = rebar_layouts[r].area();
+        const auto         &T   = bars[r];
+        const double        rho = layouts[r].material->density();
+        const double        A   = layouts[r].area();
         for (unsigned int i = 0; i < T.X.size(); ++i)
           if (T.host_dofs[i][0] >= 0)
             {
-              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              const auto N = Trusses::shape_values(T.xi[i]);
               for (unsigned int I = 0; I < 8; ++I)
                 if (T.host_dofs[i][I] < long(mass.locally_owned_size()))
                   for (unsigned int d = 0; d < 3; ++d)
@@ -334,14 +347,18 @@ namespace anvil
   // for the Cauchy stress of a bar of constant volume) and adds N_I f_r to
   // the host nodes it owns, in element order. Work of the axial force,
   // (N_old + N) / 2 (l - l_old), goes to the internal energy.
-  double Simulator::compute_rebar_forces(const double dt)
+  double Reinforcement::add_forces(const double dt)
   {
+    const VectorType &position         = get_position();
+    VectorType       &force            = get_force();
+    Energies         &energies         = get_energies();
+    const MPI_Comm    mpi_communicator = get_mpi_communicator();
     double dt_crit = 1e300;
-    for (unsigned int r = 0; r < rebars.size(); ++r)
+    for (unsigned int r = 0; r < bars.size(); ++r)
       {
-        auto                 &T        = rebars[r];
-        const auto           &material = *rebar_layouts[r].material;
-        const double          A        = rebar_layouts[r].area();
+        auto                 &T        = bars[r];
+        const auto           &material = *layouts[r].material;
+        const double          A        = layouts[r].area();
         const double          c        = std::sqrt(material.youngs_modulus() / material.density());
         const unsigned int    n        = T.X.size();
         // The node positions go to T.x (the output's too): no allocation
@@ -353,13 +370,13 @@ namespace anvil
         for (unsigned int i = 0; i < n; ++i)
           if (T.host_owned[i])
             {
-              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              const auto N = Trusses::shape_values(T.xi[i]);
               for (unsigned int I = 0; I < 8; ++I)
                 for (unsigned int d = 0; d < 3; ++d)
                   xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
             }
         Utilities::MPI::sum(xr, mpi_communicator, xr);
-        const bool slip = rebar_layouts[r].bond_slip;
+        const bool slip = layouts[r].bond_slip;
         if (slip)
           {
             // The bars move on their own; xr are the host points they sit in.
@@ -403,7 +420,7 @@ namespace anvil
             // host by a spring of the same stiffness G_s pi d l_trib. The
             // reaction goes to the host through the shape functions; the
             // work of the bond forces is the 'bond' energy.
-            const auto  &L       = rebar_layouts[r];
+            const auto  &L       = layouts[r];
             const double tau_max = L.bond_modulus * L.slip_at_peak;
             const auto &trib    = T.tributary;
             auto       &tangent = T.tangent;
@@ -480,7 +497,7 @@ namespace anvil
         for (unsigned int i = 0; i < n; ++i)
           if (T.host_dofs[i][0] >= 0)
             {
-              const auto N = Rebar::Trusses::shape_values(T.xi[i]);
+              const auto N = Trusses::shape_values(T.xi[i]);
               for (unsigned int I = 0; I < 8; ++I)
                 if (T.host_dofs[i][I] < long(force.locally_owned_size()))
                   for (unsigned int d = 0; d < 3; ++d)
@@ -491,13 +508,14 @@ namespace anvil
   }
 
 
-  void Simulator::output_rebar(const double t, const unsigned int count)
+  void Reinforcement::output_frame(const double t, const unsigned int count)
   {
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+    if (!is_root())
       return;
-    for (unsigned int r = 0; r < rebars.size(); ++r)
+    const std::string &output_directory = get_output_directory();
+    for (unsigned int r = 0; r < bars.size(); ++r)
       {
-        auto &T = rebars[r];
+        auto &T = bars[r];
         if (T.x.empty())
           {
             T.x.resize(3 * T.X.size());
@@ -505,11 +523,11 @@ namespace anvil
               for (unsigned int d = 0; d < 3; ++d)
                 T.x[3 * i + d] = T.X[i][d];
           }
-        const auto  names = rebar_layouts[r].material->uniaxial_history_names();
+        const auto  names = layouts[r].material->uniaxial_history_names();
         const auto  it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
-        std::string file  = "rebar_" + rebar_layouts[r].name + "_" + Utilities::int_to_string(count, 4) + ".vtu";
+        std::string file  = "rebar_" + layouts[r].name + "_" + Utilities::int_to_string(count, 4) + ".vtu";
         record_output(file);
-        record_output("rebar_" + rebar_layouts[r].name + ".pvd");
+        record_output("rebar_" + layouts[r].name + ".pvd");
         std::ostringstream out;
         out << std::setprecision(10)
             << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
@@ -556,7 +574,7 @@ namespace anvil
         out << "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
         write_atomically(output_directory + "/" + file, out.str());
         T.pvd_records.emplace_back(t, file);
-        write_atomically(output_directory + "/rebar_" + rebar_layouts[r].name + ".pvd",
+        write_atomically(output_directory + "/rebar_" + layouts[r].name + ".pvd",
                          Vtu::pvd_text(T.pvd_records));
       }
   }
@@ -567,17 +585,17 @@ namespace anvil
   // Replicated on every process and advanced there by the same central
   // differences as the host nodes; a pulled node keeps its velocity, and
   // the work of the force that holds it is external work.
-  void Simulator::update_rebar_velocity(const double dt_previous,
-                                        const double dt,
-                                        double      &kinetic,
-                                        double      &work,
-                                        double      &power)
+  void Reinforcement::update_velocity(const double dt_previous, const double dt, OwnMotion &motion)
   {
+    const auto &gravity = get_gravity();
+    double     &kinetic = motion.kinetic;
+    double     &work    = motion.work;
+    double     &power   = motion.power;
     const double dt_avg = 0.5 * (dt_previous + dt);
-    for (unsigned int r = 0; r < rebars.size(); ++r)
-      if (rebar_layouts[r].bond_slip)
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      if (layouts[r].bond_slip)
         {
-          auto &T = rebars[r];
+          auto &T = bars[r];
           for (unsigned int i = 0; i < T.X.size(); ++i)
             for (unsigned int d = 0; d < 3; ++d)
               {
@@ -590,7 +608,7 @@ namespace anvil
                 double f_total = f;
                 if (T.pulled[i])
                   {
-                    const double vp = rebar_layouts[r].pull_velocity[d];
+                    const double vp = layouts[r].pull_velocity[d];
                     const double reaction =
                       dt_avg > 0 ? T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg : 0.;
                     work += 0.5 * (T.pull_reaction[j] + reaction) * v_old * dt_previous;
@@ -607,12 +625,14 @@ namespace anvil
   }
 
 
-  void Simulator::update_rebar_position(const double dt)
+  void Reinforcement::update_position(const double dt)
   {
-    for (unsigned int r = 0; r < rebars.size(); ++r)
-      if (rebar_layouts[r].bond_slip)
+    const auto &gravity  = get_gravity();
+    Energies   &energies = get_energies();
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      if (layouts[r].bond_slip)
         {
-          auto &T = rebars[r];
+          auto &T = bars[r];
           for (unsigned int i = 0; i < T.X.size(); ++i)
             for (unsigned int d = 0; d < 3; ++d)
               {
@@ -624,21 +644,22 @@ namespace anvil
   }
 
 
-  void Simulator::write_rebar_history(const double t)
+  void Reinforcement::write_history(const double t)
   {
-    if (rebar_files.empty())
-      for (const auto &layout : rebar_layouts)
+    const std::string &output_directory = get_output_directory();
+    if (files.empty())
+      for (const auto &layout : layouts)
         {
           record_output("rebar_" + layout.name + ".csv");
-          rebar_files.emplace_back(output_directory + "/rebar_" + layout.name + ".csv");
-          rebar_files.back() << "time,max_axial_force,min_axial_force,max_stress,min_stress,"
+          files.emplace_back(output_directory + "/rebar_" + layout.name + ".csv");
+          files.back() << "time,max_axial_force,min_axial_force,max_stress,min_stress,"
                                 "max_effective_plastic_strain,probe_axial_force,probe_stress,probe_slip,"
                                 "probe_bond_stress\n";
         }
-    for (unsigned int r = 0; r < rebars.size(); ++r)
+    for (unsigned int r = 0; r < bars.size(); ++r)
       {
-        const auto  &T     = rebars[r];
-        const auto   names = rebar_layouts[r].material->uniaxial_history_names();
+        const auto  &T     = bars[r];
+        const auto   names = layouts[r].material->uniaxial_history_names();
         const auto   it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
         double       fmax = -1e300, fmin = 1e300, smax = -1e300, smin = 1e300, ep = 0;
         for (unsigned int k = 0; k < T.elements.size(); ++k)
@@ -651,12 +672,68 @@ namespace anvil
               ep = std::max(ep, T.history[T.n_history * k + (it - names.begin())]);
           }
         const unsigned int probe = T.probe_element;
-        rebar_files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
+        files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
                        << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe];
         // Bond-slip: slip and bond stress at the probed element's first node.
         const unsigned int pn = T.elements[probe][0];
-        rebar_files[r] << ',' << (T.slip.empty() ? 0. : T.slip[pn]) << ','
+        files[r] << ',' << (T.slip.empty() ? 0. : T.slip[pn]) << ','
                        << (T.bond_stress.empty() ? 0. : T.bond_stress[pn]) << '\n';
       }
   }
-} // namespace anvil
+
+
+  std::vector<HistoryFile *> Reinforcement::history_files()
+  {
+    std::vector<HistoryFile *> list;
+    for (auto &f : files)
+      list.push_back(&f);
+    return list;
+  }
+
+
+  void Reinforcement::add_kinetic_energy(double &kinetic) const
+  {
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      for (unsigned int j = 0; j < bars[r].vs.size(); ++j)
+        kinetic += 0.5 * bars[r].ms[j / 3] * bars[r].vs[j] * bars[r].vs[j];
+  }
+
+
+  // Bond-slip bars (replicated): their momentum at time n with the host
+  // body's.
+  void Reinforcement::add_momentum(const double dt, std::vector<double> &momentum) const
+  {
+    const auto &gravity = get_gravity();
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      if (layouts[r].bond_slip)
+        {
+          const unsigned int host = body_index(layouts[r].host);
+          const auto        &T    = bars[r];
+          for (unsigned int j = 0; j < T.vs.size(); ++j)
+            momentum[3 * host + j % 3] +=
+              T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
+        }
+  }
+
+
+  std::string Reinforcement::describe() const
+  {
+    if (bars.empty())
+      return "no bars";
+    std::size_t trusses = 0;
+    for (const auto &r : bars)
+      trusses += r.elements.size();
+    return std::to_string(trusses) + " bar elements in " + std::to_string(bars.size()) + " rebar set" +
+           (bars.size() == 1 ? "" : "s");
+  }
+
+
+  void Reinforcement::write_summary(std::ostream &out) const
+  {
+    double added_mass = 0;
+    for (const auto &T : bars)
+      added_mass += T.added_mass;
+    if (added_mass > 0)
+      out << "bar_added_mass_kg," << added_mass << '\n';
+  }
+} // namespace anvil::Rebar
