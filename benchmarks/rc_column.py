@@ -4,7 +4,11 @@ Cost: the production scene (10 mm, 21,600 elements, bond-slip bars) for a
 shortened end time on 1 and 2 MPI processes; prints steps, wall time,
 nanoseconds per element-cycle (wall time / (elements x steps), bars and
 contact included), the share of each TimerOutput section, and the wall
-time extrapolated to 150 ms at the measured step.
+time extrapolated to 150 ms at the measured step; and the memory on one
+process: the peak resident set per element, and the marginal memory per
+element (the production column's peak against the coarse column's, 2,700
+elements, over the difference in elements: what an element, its nodes and
+its share of the bars cost, without the executable and its libraries).
 
 Mesh study (--mesh-study): the bond-slip column at 20, 15 and 10 mm to the
 end criterion; prints peak and residual displacement of the impact point
@@ -31,19 +35,26 @@ work = tempfile.mkdtemp()
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
-def run(name, np, text):
+def run(name, np, text, base=scene):
     prm = os.path.join(work, name + ".prm")
     with open(prm, "w") as f:
-        f.write(f"include {scene}\n{text}")
+        f.write(f"include {base}\n{text}")
     cmd = ([anvil, prm] if np == 1 else ["mpirun", "-np", str(np), "--oversubscribe", anvil, prm])
-    r = subprocess.run(cmd, cwd=work, capture_output=True, text=True, env=env)
-    if r.returncode != 0:
-        sys.exit(f"{name}: anvil failed: {r.stderr.strip()[-300:]}")
+    with open(os.path.join(work, name + ".out"), "w+") as out_file:
+        child = subprocess.Popen(cmd, cwd=work, stdout=out_file, stderr=subprocess.STDOUT, text=True, env=env)
+        # wait4: this child's own peak resident set (kB), not the largest of all children.
+        _, status, usage = os.wait4(child.pid, 0)
+        child.returncode = os.waitstatus_to_exitcode(status)
+        out_file.seek(0)
+        stdout = out_file.read()
+    if child.returncode != 0:
+        sys.exit(f"{name}: anvil failed: {stdout.strip()[-300:]}")
+    run.peak_kb = usage.ru_maxrss
     out = os.path.join(work, "output", name)
     with open(os.path.join(out, "summary.csv")) as f:
         s = {row["quantity"]: float(row["value"]) for row in csv.DictReader(f)}
     sections = dict((m.group(1).strip(), float(m.group(2)))
-                    for m in re.finditer(r"\|\s*([a-z ]+?)\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s", r.stdout))
+                    for m in re.finditer(r"\|\s*([a-z ]+?)\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s", stdout))
     return s, sections, out
 
 
@@ -65,6 +76,20 @@ end
         print(f"  np = {np}: {int(s['steps'])} steps, {s['wall_time_s']:.1f} s wall, {ns:.0f} ns per element-cycle "
               f"(wall x processes: {np * ns:.0f}); 150 ms at this step: "
               f"{s['wall_time_s'] * 0.150 / end_time / 60:.1f} min; {share}")
+        if np == 1:
+            peak_kb, elements = run.peak_kb, s["elements"]
+    coarse_scene = os.path.join(top, "prm", "rc_column_impact", "rc_column_impact_coarse.prm")
+    s, _, _ = run("memory_coarse", 1, """
+subsection Simulation
+  set End time = 1e-4
+  set Output interval = 0
+  set Plots = false
+end
+""", base=coarse_scene)
+    marginal = 1024 * (peak_kb - run.peak_kb) / (elements - s["elements"])
+    print(f"  memory (np = 1): peak resident {peak_kb / 1024:.0f} MB, {1024 * peak_kb / elements:.0f} bytes per "
+          f"element; marginal {marginal:.0f} bytes per element (against the coarse column's "
+          f"{int(s['elements'])} elements, {run.peak_kb / 1024:.0f} MB)")
 else:
     print("rc_column: mesh study, bond-slip column to the end criterion")
     previous = None

@@ -81,6 +81,24 @@ def run_anvil(anvil, prm, np=1, cwd=None, extra_args=()):
     return r.returncode, r.stdout, r.stderr
 
 
+def build_plugin(checker, args, example, library):
+    """Build doc/examples/EXAMPLE against the CMake package of the Anvil
+    under test; return the path of the shared library LIBRARY (a failed
+    build is a failed check and ends the test)."""
+    source = os.path.join(os.path.abspath(args.source_dir), "doc", "examples", example)
+    build = os.path.join(args.work_dir, "plugin_build")
+    anvil_dir = os.path.dirname(os.path.abspath(args.anvil))
+    r = subprocess.run(["cmake", "-S", source, "-B", build, f"-Danvil_DIR={anvil_dir}", "-DCMAKE_BUILD_TYPE=Release"],
+                       capture_output=True, text=True)
+    if r.returncode == 0:
+        r = subprocess.run(["cmake", "--build", build], capture_output=True, text=True)
+    path = os.path.join(build, library)
+    if not checker.check_true("the plugin builds against the exported package",
+                              r.returncode == 0 and os.path.exists(path), (r.stdout + r.stderr).strip()[-400:]):
+        checker.finish()
+    return path
+
+
 def run_material_point(checker, args, name, material, **loading):
     """Drive one material point with 'anvil --material-point': 'material'
     is the driver file's 'subsection Material' text, 'loading' the entries

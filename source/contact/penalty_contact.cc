@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace anvil::Contact
 {
@@ -236,10 +237,6 @@ namespace anvil::Contact
   void PenaltyContact::declare_parameters(dealii::ParameterHandler &prm)
   {
     using namespace dealii;
-    prm.declare_entry("First body", "", Patterns::Anything(),
-                      "Name of the first body of the pair.");
-    prm.declare_entry("Second body", "", Patterns::Anything(),
-                      "Name of the second body of the pair.");
     prm.declare_entry("Penalty scale factor",
                       "0.1",
                       Patterns::Double(0.),
@@ -294,12 +291,8 @@ namespace anvil::Contact
   }
 
 
-  void PenaltyContact::parse_parameters(dealii::ParameterHandler &prm,
-                                        const std::string        &pair_name)
+  void PenaltyContact::parse_parameters(dealii::ParameterHandler &prm)
   {
-    name           = pair_name;
-    first_body     = prm.get("First body");
-    second_body    = prm.get("Second body");
     penalty_factor = prm.get_double("Penalty scale factor");
     symmetric      = prm.get_bool("Symmetric");
     static_friction  = prm.get_double("Static friction coefficient");
@@ -311,12 +304,20 @@ namespace anvil::Contact
                        "': 'Static friction coefficient' (" + std::to_string(static_friction) +
                        ") must not be below 'Dynamic friction coefficient' (" +
                        std::to_string(dynamic_friction) + ")");
-    if (first_body.empty() || second_body.empty())
-      throw InputError("subsection 'Contact pair " + name +
-                       "': 'First body' and 'Second body' are required");
-    if (first_body == second_body)
-      throw InputError("subsection 'Contact pair " + name +
-                       "': self-contact is not supported; name two bodies");
+  }
+
+
+  std::string PenaltyContact::parse_note() const
+  {
+    if (!(penalty_factor > 0.4))
+      return "";
+    std::ostringstream s;
+    s << "Warning: contact pair '" << name << "': penalty scale factor " << penalty_factor
+      << " > 0.4 (seed section 4.3): the penalty springs need a "
+         "smaller time step than the elements; the step is reduced "
+         "to 2 / sqrt(omega_e^2 + omega_c^2) while they act (the run's last lines "
+         "and summary.csv say how many steps they set).";
+    return s.str();
   }
 
 
@@ -1105,4 +1106,10 @@ namespace anvil::Contact
       }
     book_spring_work(slave_index, x);
   }
+
+
+  ANVIL_REGISTER_CONTACT_ALGORITHM(PenaltyContact,
+                                   "penalty",
+                                   "symmetric node-to-segment penalty contact with Coulomb friction "
+                                   "(seed section 4.3); its entries are the pair's own.")
 } // namespace anvil::Contact

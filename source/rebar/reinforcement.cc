@@ -644,7 +644,7 @@ namespace anvil::Rebar
   }
 
 
-  void Reinforcement::write_history(const double t)
+  void Reinforcement::write_history(const double t, double)
   {
     const std::string &output_directory = get_output_directory();
     if (files.empty())
@@ -681,14 +681,6 @@ namespace anvil::Rebar
       }
   }
 
-
-  std::vector<HistoryFile *> Reinforcement::history_files()
-  {
-    std::vector<HistoryFile *> list;
-    for (auto &f : files)
-      list.push_back(&f);
-    return list;
-  }
 
 
   void Reinforcement::add_kinetic_energy(double &kinetic) const

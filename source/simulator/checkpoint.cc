@@ -23,49 +23,23 @@ namespace anvil
   using namespace dealii;
   namespace fs = std::filesystem;
 
-  namespace
-  {
-    // The history files in a fixed order: their lengths at the checkpoint.
-    std::vector<HistoryFile *> history_files(HistoryFile              &energy,
-                                             HistoryFile              &momentum,
-                                             HistoryFile              &reaction,
-                                             HistoryFile              &erosion,
-                                             std::vector<HistoryFile> &probes,
-                                             std::vector<HistoryFile> &contacts,
-                                             std::vector<HistoryFile> &rigids,
-                                             const std::vector<std::unique_ptr<ForceContributor>> &families)
-    {
-      std::vector<HistoryFile *> files{&energy, &momentum, &reaction, &erosion};
-      for (auto *list : {&probes, &contacts, &rigids})
-        for (auto &f : *list)
-          files.push_back(&f);
-      for (const auto &family : families)
-        for (auto *f : family->history_files())
-          files.push_back(f);
-      return files;
-    }
-  } // namespace
 
 
   void Simulator::serialize(StateArchive &ar)
   {
     ar &position &velocity &force &mass &good_position &good_velocity &good_time;
     ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
-      &step_change_steps &contact_frequency_squared &current_dt &step_number &time &inverted_cell
-        &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &pvd_records &output_count
+      &step_change_steps &current_dt &step_number &time &inverted_cell
+        &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &output_count
           &summary &loop &peak_bc_reaction &stage_start &damping_force_old;
     // (The prescribed velocities are the scene's, not state: a new stage may change them.)
-    ar &constrained_reaction &constrained_velocity_old &bc_reaction
-      &rigid_shape_force &rigid_shape_torque &contact_results &contact_positions &contact_velocities
-        &contact_forces;
+    ar &constrained_reaction &constrained_velocity_old &bc_reaction;
     for (auto &g : element_groups)
       g.serialize(ar);
-    for (auto &c : contact_pairs)
-      c.serialize(ar);
-    for (auto &b : bodies)
-      b.rigid.serialize(ar);
-    for (auto &family : families)
+    for (auto *family : contributors())
       family->serialize(ar);
+    for (auto &postprocessor : postprocessors)
+      postprocessor->serialize(ar);
   }
 
 
@@ -75,34 +49,15 @@ namespace anvil
   // without them).
   void Simulator::remove_inactive_bodies(const bool book_energy)
   {
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (body_inactive[b])
-        {
-          auto &m = bodies[b].rigid;
-          const double kinetic = m.velocity_kinetic_energy();
-          if (book_energy)
-            {
-              energies.removed += kinetic;
-              energies.kinetic -= kinetic;
-            }
-          m.velocity         = 0;
-          m.angular_velocity = 0;
-          m.angular_momentum = 0;
-          m.kinetic_energy   = 0;
-          for (const auto &node : rigid_nodes[b])
-            for (unsigned int d = 0; d < 3; ++d)
-              velocity.local_element(node.first + d) = 0;
-          if (book_energy && kinetic > 0)
-            pcout << "  body '" << bodies[b].name << "' taken out of the analysis with " << kinetic
-                  << " J of kinetic energy" << std::endl;
-        }
-    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
-      if (pair_inactive[p])
-        {
-          if (book_energy)
-            energies.removed += contact_results[p].energy;
-          contact_results[p] = Contact::ContactResult();
-        }
+    const double kinetic = rigid_bodies->remove_inactive(book_energy);
+    if (book_energy)
+      {
+        energies.removed += kinetic;
+        energies.kinetic -= kinetic;
+      }
+    const double springs = contact->remove_inactive();
+    if (book_energy)
+      energies.removed += springs;
     velocity.update_ghost_values();
   }
 
@@ -122,12 +77,12 @@ namespace anvil
     // The open histories (rank 0's): file name and length; -1: not open.
     std::vector<long>        lengths;
     std::vector<std::string> names;
-    std::vector<unsigned int> counts{(unsigned int)probe_files.size(), (unsigned int)contact_files.size(),
-                                     (unsigned int)rigid_files.size()};
-    for (const auto &family : families)
+    std::vector<unsigned int> counts;
+    for (auto &postprocessor : postprocessors)
+      counts.push_back(postprocessor->history_files().size());
+    for (auto *family : contributors())
       counts.push_back(family->history_files().size());
-    for (auto *f : history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
-                                 contact_files, rigid_files, families))
+    for (auto *f : history_files())
       {
         lengths.push_back(f->is_open() ? f->bytes_written() : -1);
         names.push_back(f->is_open() ? fs::path(f->file()).filename().string() : "");
@@ -252,9 +207,10 @@ namespace anvil
         // A stage of its own: its histories, frames and figures start
         // here; the energies (and the balance) continue.
         remove_inactive_bodies(true);
-        summary = Summary();
+        summary = RunSummary();
         std::fill(peak_bc_reaction.begin(), peak_bc_reaction.end(), 0.);
-        pvd_records.clear();
+        for (auto &postprocessor : postprocessors)
+          postprocessor->start_stage();
         output_count       = 0;
         loop.next_output   = time + output_interval;
         loop.next_history  = time;
@@ -271,13 +227,14 @@ namespace anvil
     // appended to (rank 0).
     if (rank == 0)
       {
-        probe_files.resize(counts[0]);
-        contact_files.resize(counts[1]);
-        rigid_files.resize(counts[2]);
-        for (unsigned int f = 0; f < families.size() && 3 + f < counts.size(); ++f)
-          families[f]->resize_history_files(counts[3 + f]);
-        const auto files = history_files(energy_file, momentum_file, reaction_file, erosion_file, probe_files,
-                                         contact_files, rigid_files, families);
+        unsigned int c = 0;
+        for (auto &postprocessor : postprocessors)
+          if (c < counts.size())
+            postprocessor->resize_history_files(counts[c++]);
+        for (auto *family : contributors())
+          if (c < counts.size())
+            family->resize_history_files(counts[c++]);
+        const auto files = history_files();
         for (unsigned int k = 0; k < files.size() && k < lengths.size(); ++k)
           if (lengths[k] >= 0)
             files[k]->resume(output_directory + "/" + names[k], lengths[k]);

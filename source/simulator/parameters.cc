@@ -435,7 +435,7 @@ namespace anvil
     for (const auto &p : pair_names)
       {
         prm.enter_subsection("Contact pair " + p);
-        Contact::PenaltyContact::declare_parameters(prm);
+        Contact::declare_parameters(prm);
         prm.leave_subsection();
       }
     for (const auto &r : rebar_names)
@@ -802,28 +802,23 @@ namespace anvil
                                  b.name + "' is rigid; hold it with 'Rigid body/Motion' and "
                                  "'Rigid body/Constraints' instead");
           }
-        contact_pairs.resize(pair_names.size());
+        std::vector<std::unique_ptr<Contact::Algorithm>> pairs;
+        std::vector<unsigned char>                        pair_inactive;
         for (unsigned int i = 0; i < pair_names.size(); ++i)
           {
             prm.enter_subsection("Contact pair " + pair_names[i]);
-            contact_pairs[i].parse_parameters(prm, pair_names[i]);
+            pairs.push_back(Contact::create(prm, pair_names[i]));
             prm.leave_subsection();
-            check_body(contact_pairs[i].first_body, "Contact pair " + pair_names[i]);
-            check_body(contact_pairs[i].second_body, "Contact pair " + pair_names[i]);
+            check_body(pairs.back()->first_body, "Contact pair " + pair_names[i]);
+            check_body(pairs.back()->second_body, "Contact pair " + pair_names[i]);
             pair_inactive.push_back(0);
             for (unsigned int b = 0; b < bodies.size(); ++b)
-              if (body_inactive[b] && (body_names[b] == contact_pairs[i].first_body ||
-                                       body_names[b] == contact_pairs[i].second_body))
+              if (body_inactive[b] && (body_names[b] == pairs.back()->first_body ||
+                                       body_names[b] == pairs.back()->second_body))
                 pair_inactive.back() = 1;
-            if (contact_pairs[i].penalty_factor > 0.4)
-              pcout << "Warning: contact pair '" << pair_names[i]
-                    << "': penalty scale factor "
-                    << contact_pairs[i].penalty_factor
-                    << " > 0.4 (seed section 4.3): the penalty springs need a "
-                       "smaller time step than the elements; the step is reduced "
-                       "to 2 / sqrt(omega_e^2 + omega_c^2) while they act (the run's last lines "
-                       "and summary.csv say how many steps they set)."
-                    << std::endl;
+            const std::string note = pairs.back()->parse_note();
+            if (!note.empty())
+              pcout << note << std::endl;
           }
         std::vector<Rebar::Layout> rebar_layouts(rebar_names.size());
         for (unsigned int i = 0; i < rebar_names.size(); ++i)
@@ -834,7 +829,12 @@ namespace anvil
             check_body(rebar_layouts[i].host, "Rebar " + rebar_names[i]);
           }
         families.clear();
+        families.push_back(
+          std::make_unique<RigidBody::RigidBodies>(*this, fe, velocity, rigid_dof, body_inactive));
+        rigid_bodies = static_cast<RigidBody::RigidBodies *>(families.back().get());
         families.push_back(std::make_unique<Rebar::Reinforcement>(*this, std::move(rebar_layouts)));
+        contact = std::make_unique<Contact::ContactPairs>(*this, std::move(pairs), std::move(pair_inactive),
+                                                          *rigid_bodies);
         probes.resize(probe_names.size());
         for (unsigned int i = 0; i < probe_names.size(); ++i)
           {

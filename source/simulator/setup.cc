@@ -48,6 +48,7 @@ namespace anvil
                          " (an entry that needs numbers holds something else; "
                          "'anvil --print-parameters' shows what each entry takes)");
       }
+    postprocessors = Postprocess::create_all(*this);
   }
 
 
@@ -176,9 +177,19 @@ namespace anvil
       family->setup();
     assemble_lumped_mass();
     setup_boundary_conditions();
-    setup_rigid_bodies();
-    setup_contact();
+    for (auto *family : contributors())
+      family->initialize();
     setup_probes();
+  }
+
+
+  std::vector<ForceContributor *> Simulator::contributors() const
+  {
+    std::vector<ForceContributor *> list;
+    for (const auto &family : families)
+      list.push_back(family.get());
+    list.push_back(contact.get());
+    return list;
   }
 
 
@@ -189,7 +200,7 @@ namespace anvil
     prepare_output_directory(true);
     pcout << scene_file << ": scene '" << scene_name << "' is valid: "
           << bodies.size() << " bodies, " << triangulation.n_global_active_cells()
-          << " elements, " << contact_pairs.size() << " contact pairs"
+          << " elements, " << contact->n_pairs() << " contact pairs"
           << std::endl;
   }
 
@@ -368,221 +379,6 @@ namespace anvil
   }
 
 
-  // @sect3{Rigid bodies}
-  //
-  // Mass, centre of mass and inertia from the mesh by 2x2x2 Gauss
-  // quadrature of rho, rho x and rho (|r|^2 I - r r) over the owned cells
-  // (exact for the trilinear map and constant density), summed over the
-  // ranks. The centre equals the lumped-mass centroid sum m_I X_I / M,
-  // since sum N_I X_I = x; so gravity exerts no torque about it.
-  void Simulator::setup_rigid_bodies()
-  {
-    const unsigned int nb = bodies.size();
-    rigid_nodes.assign(nb, {});
-    rigid_dof.assign(position.locally_owned_size(), 0);
-    rigid_shape_force.assign(nb, Tensor<1, 3>());
-    rigid_shape_torque.assign(nb, Tensor<1, 3>());
-    bool any = false;
-    for (const auto &b : bodies)
-      any |= b.is_rigid();
-    if (!any)
-      {
-        rigid_dof.clear();
-        return;
-      }
-    // Moments of order 0, 1, 2 about the origin: m, m x (3), m x x (6).
-    std::vector<double> moments(10 * nb, 0.);
-    const QGauss<3>     quadrature(2);
-    FEValues<3>         fe_values(fe, quadrature, update_quadrature_points | update_JxW_values);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && bodies[cell->material_id()].is_rigid())
-        {
-          const unsigned int b   = cell->material_id();
-          const double       rho = bodies[b].material->density();
-          fe_values.reinit(cell);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const Point<3> x  = fe_values.quadrature_point(q);
-              const double   dm = rho * fe_values.JxW(q);
-              double        *m  = &moments[10 * b];
-              m[0] += dm;
-              for (unsigned int d = 0; d < 3; ++d)
-                m[1 + d] += dm * x[d];
-              m[4] += dm * x[0] * x[0];
-              m[5] += dm * x[1] * x[1];
-              m[6] += dm * x[2] * x[2];
-              m[7] += dm * x[0] * x[1];
-              m[8] += dm * x[1] * x[2];
-              m[9] += dm * x[0] * x[2];
-            }
-        }
-    Utilities::MPI::sum(moments, mpi_communicator, moments);
-    for (unsigned int b = 0; b < nb; ++b)
-      if (bodies[b].is_rigid())
-        {
-          const double *m = &moments[10 * b];
-          const double  M = m[0];
-          Point<3>      c(m[1] / M, m[2] / M, m[3] / M);
-          // Second moments about the centre, then I = tr(S) 1 - S.
-          Tensor<2, 3> S;
-          S[0][0] = m[4] - M * c[0] * c[0];
-          S[1][1] = m[5] - M * c[1] * c[1];
-          S[2][2] = m[6] - M * c[2] * c[2];
-          S[0][1] = S[1][0] = m[7] - M * c[0] * c[1];
-          S[1][2] = S[2][1] = m[8] - M * c[1] * c[2];
-          S[0][2] = S[2][0] = m[9] - M * c[0] * c[2];
-          Tensor<2, 3> I = trace(S) * unit_symmetric_tensor<3>() - S;
-          auto        &motion = bodies[b].rigid;
-          double       mass   = M;
-          if (motion.given_mass > 0)
-            {
-              I *= motion.given_mass / M;
-              mass = motion.given_mass;
-            }
-          if (!motion.given_inertia.empty())
-            {
-              const auto &g = motion.given_inertia;
-              I[0][0]       = g[0];
-              I[1][1]       = g[1];
-              I[2][2]       = g[2];
-              I[0][1] = I[1][0] = g[3];
-              I[1][2] = I[2][1] = g[4];
-              I[0][2] = I[2][0] = g[5];
-            }
-          motion.initialize(mass, c, I, bodies[b].initial_velocity);
-          pcout << "  rigid body '" << bodies[b].name << "': " << (motion.free ? "free" : "prescribed")
-                << " motion, mass " << mass << " kg, centre (" << c << ")" << std::endl;
-        }
-
-    // The owned nodes of each rigid body, and their initial velocity
-    // V + omega x (X - c).
-    const IndexSet &owned = dof_handler.locally_owned_dofs();
-    std::vector<bool> seen(position.locally_owned_size(), false);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial() && bodies[cell->material_id()].is_rigid())
-        for (unsigned int v = 0; v < 8; ++v)
-          {
-            const auto dof = cell->vertex_dof_index(v, 0);
-            if (!owned.is_element(dof))
-              continue;
-            const unsigned int i = owned.index_within_set(dof);
-            if (seen[i])
-              continue;
-            seen[i]            = true;
-            const auto &motion = bodies[cell->material_id()].rigid;
-            rigid_nodes[cell->material_id()].emplace_back(
-              position.get_partitioner()->global_to_local(dof), cell->vertex(v));
-            const Tensor<1, 3> vel = motion.velocity_at(cell->vertex(v), motion.centre);
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                rigid_dof[i + d] = 1;
-                velocity.local_element(position.get_partitioner()->global_to_local(dof) + d) = vel[d];
-              }
-          }
-    velocity.update_ghost_values();
-  }
-
-
-  // @sect3{Contact surfaces}
-  //
-  // Every boundary face of a body in a pair is a segment. Each rank lists
-  // the segments of its own cells; all ranks then hold the whole surface.
-  void Simulator::setup_contact()
-  {
-    const unsigned int n_pairs = contact_pairs.size();
-    contact_local_index.assign(n_pairs, {});
-    contact_positions.assign(n_pairs, {});
-    contact_velocities.assign(n_pairs, {});
-    contact_forces.assign(n_pairs, {});
-    contact_results.assign(n_pairs, {});
-    contact_frequency_squared = 0;
-    auto body_index = [&](const std::string &name) {
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b].name == name)
-          return b;
-      return numbers::invalid_unsigned_int;
-    };
-    for (unsigned int p = 0; p < n_pairs; ++p)
-      {
-        std::vector<Contact::SegmentDescription> segments[2];
-        const unsigned int body[2] = {body_index(contact_pairs[p].first_body),
-                                      body_index(contact_pairs[p].second_body)};
-        for (unsigned int s = 0; s < 2; ++s)
-          {
-            std::vector<double> local;
-            for (const auto &cell : dof_handler.active_cell_iterators())
-              if (cell->is_locally_owned() && cell->material_id() == body[s])
-                for (const unsigned int f : cell->face_indices())
-                  if (cell->face(f)->at_boundary())
-                    {
-                      const auto   face     = cell->face(f);
-                      const double V        = cell->measure();
-                      const double K        = bodies[body[s]].material->bulk_modulus();
-                      constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
-                      Point<3>               p[4];
-                      for (unsigned int k = 0; k < 4; ++k)
-                        p[k] = face->vertex(cyclic[k]);
-                      const Tensor<1, 3> n = cross_product_3d(p[1] - p[0], p[3] - p[0]);
-                      const bool flip = n * (face->center() - cell->center()) < 0;
-                      for (unsigned int k = 0; k < 4; ++k)
-                        {
-                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
-                          local.push_back(face->vertex_dof_index(kk, 0));
-                        }
-                      for (unsigned int k = 0; k < 4; ++k)
-                        {
-                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
-                          for (unsigned int d = 0; d < 3; ++d)
-                            local.push_back(face->vertex(kk)[d]);
-                        }
-                      local.push_back(K);
-                      local.push_back(V);
-                      local.push_back(cell->id().get_coarse_cell_id());
-                    }
-            for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
-              for (std::size_t i = 0; i < part.size(); i += 19)
-                {
-                  Contact::SegmentDescription d;
-                  for (unsigned int k = 0; k < 4; ++k)
-                    d.x_dof[k] = static_cast<unsigned long>(part[i + k]);
-                  for (unsigned int k = 0; k < 12; ++k)
-                    d.reference_position[k] = part[i + 4 + k];
-                  d.bulk_modulus = part[i + 16];
-                  d.volume       = part[i + 17];
-                  d.element   = static_cast<unsigned long>(part[i + 18]);
-                  segments[s].push_back(d);
-                }
-          }
-        contact_pairs[p].setup(segments[0], segments[1]);
-        for (unsigned int s = 0; s < 2; ++s)
-          contact_pairs[p].set_rigid(s, bodies[body[s]].is_rigid());
-        if (bodies[body[0]].is_rigid() && bodies[body[1]].is_rigid())
-          throw InputError(scene_file + ": subsection 'Contact pair " + contact_pairs[p].name +
-                           "': both bodies are rigid");
-        const auto &dofs = contact_pairs[p].node_dofs();
-        contact_local_index[p].resize(dofs.size());
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          contact_local_index[p][i] =
-            dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
-              long(position.get_partitioner()->global_to_local(dofs[i])) :
-              -1;
-        // The pair's node masses (normal damping, the springs' frequency in
-        // the stable step, which each evaluation updates).
-        std::vector<double> m(dofs.size(), 0.);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          if (contact_local_index[p][i] >= 0)
-            m[i] = mass.local_element(contact_local_index[p][i]);
-        Utilities::MPI::sum(m, mpi_communicator, m);
-        contact_pairs[p].set_node_masses(m);
-        place_analytic_shapes(p);
-        contact_positions[p].resize(3 * dofs.size());
-        if (contact_pairs[p].needs_velocities())
-          contact_velocities[p].resize(3 * dofs.size());
-        contact_forces[p].resize(3 * dofs.size());
-      }
-  }
-
-
   // @sect3{Probes}
   void Simulator::setup_probes()
   {
@@ -723,9 +519,6 @@ namespace anvil
         if (group.get_material().erodes())
           erosion.insert(group_body[g]);
       }
-    unsigned int pairs = 0;
-    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
-      pairs += pair_inactive[p] ? 0 : 1;
     auto count = [](const std::size_t n, const std::string &what, const std::string &of) {
       return n == 0 ? "no " + what :
                       what + " in " + std::to_string(n) + " " +
@@ -734,12 +527,10 @@ namespace anvil
     std::ostringstream s;
     s << "elements of " << deformable.size() << " bod" << (deformable.size() == 1 ? "y" : "ies") << "; "
       << count(bulk.size(), "bulk viscosity", "body") << "; " << count(rate.size(), "rate effects", "body")
-      << "; " << count(erosion.size(), "erosion", "body") << "; " << count(pairs, "contact", "pair") << "; "
-      ;
+      << "; " << count(erosion.size(), "erosion", "body") << "; " << contact->describe();
     for (const auto &family : families)
-      s << family->describe();
-    s
-      << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "
+      s << "; " << family->describe();
+    s << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "
       << (gravity.norm() > 0 ? "gravity" : "no gravity");
     return s.str();
   }

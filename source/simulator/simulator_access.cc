@@ -120,6 +120,123 @@ namespace anvil
     return simulator.energies;
   }
 
+  double SimulatorAccess::get_initial_energy() const
+  {
+    return simulator.initial_energy;
+  }
+
+  double SimulatorAccess::get_balance_error() const
+  {
+    return simulator.balance_error;
+  }
+
+  const std::string &SimulatorAccess::get_scene_name() const
+  {
+    return simulator.scene_name;
+  }
+
+  RunSummary &SimulatorAccess::get_summary() const
+  {
+    return simulator.summary;
+  }
+
+  const std::vector<Probe> &SimulatorAccess::get_probes() const
+  {
+    return simulator.probes;
+  }
+
+  void SimulatorAccess::record_probe_summary(const std::vector<double> &probe_values) const
+  {
+    simulator.record_probe_summary(probe_values);
+  }
+
+  const std::vector<BoundaryCondition> &SimulatorAccess::get_boundary_conditions() const
+  {
+    return simulator.boundary_conditions;
+  }
+
+  const std::vector<double> &SimulatorAccess::get_bc_reaction() const
+  {
+    return simulator.bc_reaction;
+  }
+
+  std::vector<double> &SimulatorAccess::get_peak_bc_reaction() const
+  {
+    return simulator.peak_bc_reaction;
+  }
+
+  const std::string &SimulatorAccess::get_capacity_support() const
+  {
+    return simulator.capacity_support;
+  }
+
+  double SimulatorAccess::get_intact_capacity() const
+  {
+    return simulator.intact_capacity;
+  }
+
+  bool SimulatorAccess::has_mass_damping() const
+  {
+    return simulator.mass_damping > 0;
+  }
+
+  double SimulatorAccess::damping_force(const unsigned int i) const
+  {
+    return simulator.mass_damping > 0 && i < simulator.damping_force_old.size() ?
+             simulator.damping_force_old[i] :
+             0.;
+  }
+
+  const std::vector<unsigned char> &SimulatorAccess::get_dof_body() const
+  {
+    return simulator.dof_body;
+  }
+
+  const std::vector<unsigned char> &SimulatorAccess::get_dof_component() const
+  {
+    return simulator.dof_component;
+  }
+
+  const std::vector<unsigned char> &SimulatorAccess::get_rigid_dof() const
+  {
+    return simulator.rigid_dof;
+  }
+
+  const std::vector<unsigned int> &SimulatorAccess::get_group_body() const
+  {
+    return simulator.group_body;
+  }
+
+  const dealii::FESystem<3> &SimulatorAccess::get_fe() const
+  {
+    return simulator.fe;
+  }
+
+  unsigned long SimulatorAccess::n_eroded_elements() const
+  {
+    return simulator.n_eroded;
+  }
+
+  std::vector<std::string> &SimulatorAccess::get_erosion_rows() const
+  {
+    return simulator.erosion_rows;
+  }
+
+  std::vector<ForceContributor *> SimulatorAccess::get_families() const
+  {
+    return simulator.contributors();
+  }
+
+  bool SimulatorAccess::has_contact() const
+  {
+    return !simulator.contact->empty();
+  }
+
+  bool SimulatorAccess::plots_requested() const
+  {
+    return simulator.make_plots;
+  }
+
   void SimulatorAccess::record_output(const std::string &name) const
   {
     simulator.record_output(name);

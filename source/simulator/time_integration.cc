@@ -33,7 +33,7 @@ namespace anvil
                 force.get_partitioner()->n_ghost_indices(),
               0.);
     // Gravity: the lumped body force m_I g on every owned dof.
-    // (Rigid bodies take M g at their centre in advance_rigid_bodies.)
+    // (Rigid bodies take M g at their centre: RigidBodies::update_velocity.)
     if (gravity.norm() > 0)
       for (unsigned int i = 0; i < force.locally_owned_size(); ++i)
         if (rigid_dof.empty() || !rigid_dof[i])
@@ -42,6 +42,11 @@ namespace anvil
 
 
   // @sect3{Internal forces}
+  //
+  // The solid bodies are the Simulator's own loop: every element group
+  // (source/element/), then the families with forces, then erosion's
+  // bookkeeping (the eroded elements' faces leave the contact pairs; the
+  // rows of erosion.csv go to rank 0).
   double Simulator::compute_internal_forces(const double dt_previous)
   {
     TimerOutput::Scope t(*timer, "element forces");
@@ -75,11 +80,13 @@ namespace anvil
     Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
                         mpi_communicator,
                         ArrayView<double>(increments.data(), increments.size()));
-    // Reinforcement: replicated on every process, its energy counted once;
-    // timed on its own (what follows is bookkeeping).
+    // The families with forces of their own (the bars: replicated on every
+    // process, their energy counted once), each timed in its own section;
+    // their work is booked before the elements' increments, as it always
+    // was (the same sums, bit for bit).
     t.stop();
     for (auto &family : families)
-      if (!family->empty())
+      if (!family->empty() && family->has_forces())
         {
           TimerOutput::Scope section(*timer, family->name());
           dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
@@ -97,8 +104,7 @@ namespace anvil
           all.insert(all.end(), part.begin(), part.end());
         std::sort(all.begin(), all.end());
         all.erase(std::unique(all.begin(), all.end()), all.end());
-        for (auto &pair : contact_pairs)
-          pair.deactivate_elements(all);
+        contact->deactivate_elements(all);
         for (const auto &part : Utilities::MPI::gather(mpi_communicator, eroded_info, 0))
           for (std::size_t i = 0; i + 8 <= part.size(); i += 8)
             {
@@ -154,96 +160,6 @@ namespace anvil
   }
 
 
-  // @sect3{Contact}
-  //
-  // Positions of each pair's nodes are gathered to every rank, every rank
-  // evaluates the pair, and each keeps the forces on the nodes it owns.
-  void Simulator::apply_contact(const double dt_previous)
-  {
-    if (contact_pairs.empty())
-      return;
-    for (auto &t : rigid_shape_force)
-      t = 0;
-    for (auto &t : rigid_shape_torque)
-      t = 0;
-    TimerOutput::Scope t(*timer, "contact");
-    // The springs in reach bound the step at once; once they leave, the
-    // bound relaxes over some hundred steps (omega^2 by 1 % a step, the step
-    // by 0.5 %). A step that jumps back and forth as nodes enter and leave
-    // the reach of their partners resonates with the mesh (the energy
-    // error of the variable-step scheme, energies.step_change).
-    const double held_frequency_squared = 0.99 * contact_frequency_squared;
-    contact_frequency_squared           = 0;
-    for (unsigned int p = 0; p < contact_pairs.size(); ++p)
-      {
-        if (pair_inactive[p])
-          continue;
-        auto &xs = contact_positions[p];
-        auto &vs = contact_velocities[p];
-        auto &fs = contact_forces[p];
-        std::fill(xs.begin(), xs.end(), 0.);
-        std::fill(vs.begin(), vs.end(), 0.);
-        std::fill(fs.begin(), fs.end(), 0.);
-        const auto &index = contact_local_index[p];
-        for (unsigned int i = 0; i < index.size(); ++i)
-          if (index[i] >= 0)
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                xs[3 * i + d] = position.local_element(index[i] + d);
-                if (!vs.empty())
-                  vs[3 * i + d] = velocity.local_element(index[i] + d);
-              }
-        Utilities::MPI::sum(xs, mpi_communicator, xs);
-        if (!vs.empty())
-          Utilities::MPI::sum(vs, mpi_communicator, vs);
-        place_analytic_shapes(p);
-        int shape_body = -1;
-        for (unsigned int b = 0; b < bodies.size(); ++b)
-          if ((bodies[b].name == contact_pairs[p].first_body && contact_pairs[p].has_analytic(0)) ||
-              (bodies[b].name == contact_pairs[p].second_body && contact_pairs[p].has_analytic(1)))
-            shape_body = b;
-        contact_results[p] = contact_pairs[p].compute_forces(xs, vs, dt_previous, fs);
-        // The springs in contact, or within reach by the next step, bound
-        // the next step (replicated: the same on every rank).
-        contact_frequency_squared =
-          std::max(contact_frequency_squared, contact_results[p].frequency_squared);
-        if (shape_body >= 0)
-          {
-            rigid_shape_force[shape_body] += contact_results[p].shape_force;
-            rigid_shape_torque[shape_body] += contact_results[p].shape_torque;
-          }
-        // Replicated evaluation: every rank has the same friction work.
-        energies.friction += contact_results[p].friction_work;
-        for (unsigned int i = 0; i < index.size(); ++i)
-          if (index[i] >= 0)
-            for (unsigned int d = 0; d < 3; ++d)
-              force.local_element(index[i] + d) += fs[3 * i + d];
-      }
-    contact_frequency_squared = std::max(contact_frequency_squared, held_frequency_squared);
-  }
-
-
-  // Place the analytic shapes of rigid bodies of pair @p p (at n+1, like
-  // the positions; their velocities are the half-step ones).
-  void Simulator::place_analytic_shapes(const unsigned int p)
-  {
-    const std::string names[2] = {contact_pairs[p].first_body, contact_pairs[p].second_body};
-    for (unsigned int s = 0; s < 2; ++s)
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
-            bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
-          {
-            const auto              &m = bodies[b].rigid;
-            Contact::AnalyticSurface a;
-            a.shape            = &m.shape;
-            a.centre           = m.centre;
-            a.reference_centre = m.reference_centre;
-            a.rotation         = m.rotation;
-            a.velocity         = m.velocity;
-            a.angular_velocity = m.angular_velocity;
-            contact_pairs[p].set_analytic(s, a);
-          }
-  }
 
 
   // @sect3{Central difference update}
@@ -264,6 +180,19 @@ namespace anvil
   // time or a change of the stable step made it jump.)
   // Histories are written between the velocity and the position update,
   // when positions are those of time n.
+  // @sect3{Contact}
+  //
+  // The contact pairs, after the element forces and erosion (an eroded
+  // element's faces have left the pairs): Contact::ContactPairs.
+  void Simulator::apply_contact(const double dt_previous)
+  {
+    if (contact->empty())
+      return;
+    TimerOutput::Scope t(*timer, "contact");
+    contact->add_forces(dt_previous);
+  }
+
+
   void Simulator::update_velocity(const double dt_previous, const double dt)
   {
     TimerOutput::Scope t(*timer, "time integration");
@@ -357,8 +286,6 @@ namespace anvil
     std::vector<double> sums = {kinetic, work, power};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
     OwnMotion own;
-    if (!rigid_dof.empty())
-      advance_rigid_bodies(dt_previous, dt, own.kinetic, own.work, own.power);
     for (auto &family : families)
       if (!family->empty())
         family->update_velocity(dt_previous, dt, own);
@@ -369,78 +296,6 @@ namespace anvil
     // synchronisation of the velocities) needs none: K^n is exact there.
     energies.step_change += pending_step_change;
     pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + own.power) : 0.;
-  }
-
-
-  // @sect3{Rigid bodies}
-  //
-  // Resultant force and torque about the centre from the nodal forces
-  // (contact, gravity) of the owned nodes, plus the reactions of analytic
-  // contact shapes; the body advances (RigidBody::Motion::advance), and each
-  // node gets the velocity that carries it exactly to its rigid placement at
-  // n+1, so the common position update keeps the body rigid. A body of
-  // prescribed motion is held by a reaction equal and opposite to the
-  // resultant, whose work is external work (Motion::advance).
-  void Simulator::advance_rigid_bodies(const double dt_previous,
-                                       const double dt,
-                                       double      &kinetic,
-                                       double      &work,
-                                       double      &power)
-  {
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (bodies[b].is_rigid() && body_inactive[b])
-        {
-          // Out of the analysis: held where it was removed.
-          for (const auto &node : rigid_nodes[b])
-            for (unsigned int d = 0; d < 3; ++d)
-              velocity.local_element(node.first + d) = 0;
-        }
-      else if (bodies[b].is_rigid())
-        {
-          auto               &motion = bodies[b].rigid;
-          std::vector<double> ft(6, 0.);
-          for (const auto &[i, X] : rigid_nodes[b])
-            {
-              Tensor<1, 3> fi, r;
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  fi[d] = force.local_element(i + d);
-                  r[d]  = position.local_element(i + d) - motion.centre[d];
-                }
-              const Tensor<1, 3> t = cross_product_3d(r, fi);
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  ft[d] += fi[d];
-                  ft[3 + d] += t[d];
-                }
-            }
-          Utilities::MPI::sum(ft, mpi_communicator, ft);
-          Tensor<1, 3> F({ft[0], ft[1], ft[2]}), T({ft[3], ft[4], ft[5]});
-          F += rigid_shape_force[b];
-          T += rigid_shape_torque[b];
-          // Gravity: M g at the centre of mass.
-          F += motion.mass * gravity;
-          // Work of gravity over the last step: the centre moved by exactly
-          // V^{n-1/2} dt^{n-1/2}.
-          work += motion.mass * (gravity * motion.velocity) * dt_previous;
-          const Tensor<1, 3> V_old = motion.velocity, w_old = motion.angular_velocity;
-          kinetic += motion.advance(F, T, dt_previous, dt);
-          work += motion.last_reaction_work;
-          // F_tot . dV + T_tot . d omega, with the totals (reactions
-          // included) that moved the body.
-          power += (F + motion.reaction_force) * (motion.velocity - V_old) +
-                   (T + motion.reaction_torque) * (motion.angular_velocity - w_old);
-          for (const auto &[i, X] : rigid_nodes[b])
-            {
-              Point<3> x;
-              for (unsigned int d = 0; d < 3; ++d)
-                x[d] = position.local_element(i + d);
-              const Tensor<1, 3> vel = dt > 0 ? (motion.placement(X) - x) / dt :
-                                                motion.velocity_at(x, motion.centre);
-              for (unsigned int d = 0; d < 3; ++d)
-                velocity.local_element(i + d) = vel[d];
-            }
-        }
   }
 
 
@@ -517,11 +372,12 @@ namespace anvil
     // at once and the run nowhere.
     const double dt_stable = dt_next / time_step_factor;
     // Contact lost by pass-through (replicated results: no reduction).
+    const auto &contact_results = contact->results();
     for (unsigned int p = 0; p < contact_results.size() && problem.empty(); ++p)
       if (contact_results[p].n_passed_through > 0)
         {
           std::ostringstream s;
-          s << "contact pair '" << contact_pairs[p].name << "': " << contact_results[p].n_passed_through
+          s << "contact pair '" << contact->pair(p).name << "': " << contact_results[p].n_passed_through
             << " node(s) in contact last step passed through the surface they pressed on (now "
             << contact_results[p].passed_through_ratio
             << " of its element's thickness deep): the springs cannot stop this impact within a step; "
@@ -699,6 +555,7 @@ namespace anvil
   // penalty factors need smaller steps).
   double Simulator::stable_time_step() const
   {
+    const double contact_frequency_squared = contact->frequency_squared();
     return contact_frequency_squared > 0 ?
              1. / std::sqrt(1. / (critical_dt * critical_dt) + 0.25 * contact_frequency_squared) :
              critical_dt;
@@ -857,6 +714,7 @@ namespace anvil
         zero_forces();
         critical_dt = compute_internal_forces(0.);
         apply_contact(0.);
+        const double contact_frequency_squared = contact->frequency_squared();
         if (contact_frequency_squared > 0)
           {
             const double reduction =
@@ -871,12 +729,8 @@ namespace anvil
           if (rigid_dof.empty() || !rigid_dof[i])
             kinetic0 += mass.local_element(i) * velocity.local_element(i) * velocity.local_element(i);
         energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
-        for (const auto &family : families)
+        for (const auto *family : contributors())
           family->add_kinetic_energy(energies.kinetic);
-        // Rigid bodies: 1/2 M V.V + 1/2 omega . I omega.
-        for (const auto &b : bodies)
-          if (b.is_rigid())
-            energies.kinetic += b.rigid.velocity_kinetic_energy();
         initial_energy   = energies.total();
         summary.initial_kinetic = energies.kinetic;
         output_results(0., "solution");
@@ -938,7 +792,7 @@ namespace anvil
 
         // Contact energy of the configuration x^n.
         energies.contact = 0;
-        for (const auto &r : contact_results)
+        for (const auto &r : contact->results())
           energies.contact += r.energy;
 
         // The state a next stage starts from: x^n, v^{n-1/2} and F^n, before
@@ -1035,15 +889,16 @@ namespace anvil
     position.update_ghost_values();
     velocity.update_ghost_values();
     output_results(time, "solution");
-    write_pvd();
+    flush_histories();
     if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
       throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
                                                  output_failure);
-    write_body_summary();
     const double wall_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    write_summary(wall_total);
-    write_plots();
+    // The last frame, bodies.csv, summary.csv, the plots (in the
+    // postprocessors' order).
+    for (auto &postprocessor : postprocessors)
+      postprocessor->end_of_run(wall_total);
     write_status("finished", time, wall_total, 0.);
     if (summary.ended_early)
       {

@@ -13,21 +13,11 @@ against the exported CMake package and loaded at run time with
 import math
 import os
 import subprocess
-from anvil_test import Checker, arguments, read_csv, run_anvil, uniaxial_boundary_conditions, write_scene
+from anvil_test import Checker, arguments, build_plugin, read_csv, run_anvil, uniaxial_boundary_conditions, write_scene
 
 args = arguments()
 c = Checker("Johnson-Cook plugin (doc/extending.md)")
-source = os.path.join(os.path.abspath(args.source_dir), "doc", "examples", "johnson_cook")
-build = os.path.join(args.work_dir, "plugin_build")
-anvil_dir = os.path.dirname(os.path.abspath(args.anvil))
-r = subprocess.run(["cmake", "-S", source, "-B", build, f"-Danvil_DIR={anvil_dir}", "-DCMAKE_BUILD_TYPE=Release"],
-                   capture_output=True, text=True)
-if r.returncode == 0:
-    r = subprocess.run(["cmake", "--build", build], capture_output=True, text=True)
-library = os.path.join(build, "libjohnson_cook.so")
-if not c.check_true("the plugin builds against the exported package", r.returncode == 0 and os.path.exists(library),
-                    (r.stdout + r.stderr).strip()[-400:]):
-    c.finish()
+library = build_plugin(c, args, "johnson_cook", "libjohnson_cook.so")
 
 A, B, n, C, E = 350e6, 275e6, 0.36, 0.022, 2.1e11
 

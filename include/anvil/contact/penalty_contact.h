@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include <anvil/contact/interface.h>
 #include <anvil/utilities/state_archive.h>
 
 #include <anvil/rigid_body/rigid_body.h>
@@ -65,65 +66,6 @@ namespace anvil::Contact
     std::vector<unsigned int> touched;
   };
 
-  /** The placement of a rigid body's analytic contact shape. */
-  struct AnalyticSurface
-  {
-    const RigidBody::Shape *shape = nullptr;
-    dealii::Point<3>        centre, reference_centre;
-    dealii::Tensor<2, 3>    rotation;
-    dealii::Tensor<1, 3>    velocity, angular_velocity;
-  };
-
-  /** One segment as the simulator hands it over, with global dof indices. */
-  struct SegmentDescription
-  {
-    std::array<unsigned long, 4> x_dof;
-    std::array<double, 12>       reference_position;
-    /** Bulk modulus and reference volume of the segment's element. */
-    double bulk_modulus;
-    double volume;
-    /** Scene-wide id of the segment's element. */
-    unsigned long element = 0;
-  };
-
-  /** What a contact evaluation reports. */
-  struct ContactResult
-  {
-    /** Sum of the contact forces on the first body's nodes. Units: N. */
-    std::array<double, 3> force_on_first = {{0, 0, 0}};
-    /** Deepest penetration found in either pass. Units: m. */
-    double max_penetration = 0;
-    /** Largest penetration as a fraction of the current thickness V / A of
-        the element that the penalty spring stands for. Units: none. */
-    double max_penetration_ratio = 0;
-    /** Work done so far on the penalty springs, the sum over steps of
-        1/2 (f^{n-1} + f^n) (l^n - l^{n-1}) per spring: 1/2 k l^2 while k is
-        constant, and the energy balance stays closed when k follows the
-        current geometry. Units: J. */
-    double energy = 0;
-    /** The square of the highest frequency that the springs which act, or
-        may act within the next step (a slave node within the thickness of
-        its partner's element), can add: a bound per node from the springs
-        on it and its mass. Units: 1/s^2. */
-    double frequency_squared = 0;
-    /** Work done this step against the friction forces (dissipated, or
-        stored in sticking tangential springs), >= 0 for sliding, and
-        dissipated by the normal damping. Units: J. */
-    double friction_work = 0;
-    /** Sum of the friction forces on the first body's nodes. Units: N. */
-    std::array<double, 3> friction_on_first = {{0, 0, 0}};
-    /** Resultant force and torque (about the body's centre) on a rigid
-        body's analytic shape. Units: N, N m. */
-    dealii::Tensor<1, 3> shape_force, shape_torque;
-    /** Number of active slave nodes (both passes). */
-    unsigned int n_active = 0;
-    /** Slave nodes in contact last step that are now deeper than the
-        element they pressed on (passed through the master surface), and
-        the largest such depth over the element's thickness. */
-    unsigned int n_passed_through     = 0;
-    double       passed_through_ratio = 0;
-  };
-
   /**
    * A contact pair: each body's surface is master for the other's nodes
    * (the symmetric penalty method). The pair's data are replicated on every
@@ -132,27 +74,30 @@ namespace anvil::Contact
    * the forces of the nodes it owns. The result therefore does not depend
    * on the number of processes.
    */
-  class PenaltyContact
+  class PenaltyContact : public Algorithm
   {
   public:
+    /** The entries of the pair's subsection ('Penalty scale factor',
+        friction, damping, 'Symmetric'). */
     static void declare_parameters(dealii::ParameterHandler &prm);
-    void        parse_parameters(dealii::ParameterHandler &prm,
-                                 const std::string        &name);
+    void        parse_parameters(dealii::ParameterHandler &prm) override;
+    /** A penalty factor above 0.4 lowers the step (seed section 4.3). */
+    std::string parse_note() const override;
 
     /** Everything a step changes (checkpoints): surfaces (erosion),
         friction forces and the search trees as last built. */
-    void serialize(StateArchive &ar);
+    void serialize(StateArchive &ar) override;
 
     /** Build the replicated surfaces from all ranks' segments. */
     void setup(const std::vector<SegmentDescription> &first,
-               const std::vector<SegmentDescription> &second);
+               const std::vector<SegmentDescription> &second) override;
 
     /** Take the faces of the eroded elements @p ids (sorted) out of the
         pair: an eroded element leaves contact. */
-    void deactivate_elements(const std::vector<unsigned long> &ids);
+    void deactivate_elements(const std::vector<unsigned long> &ids) override;
 
     /** Global x-dof indices of the pair's nodes, in the pair's order. */
-    const std::vector<unsigned long> &node_dofs() const
+    const std::vector<unsigned long> &node_dofs() const override
     {
       return dofs;
     }
@@ -167,39 +112,37 @@ namespace anvil::Contact
     ContactResult compute_forces(const std::vector<double> &x,
                                  const std::vector<double> &v,
                                  double                     dt,
-                                 std::vector<double>       &f);
+                                 std::vector<double>       &f) override;
 
     /** Whether the pair needs velocities (friction or damping). */
-    bool needs_velocities() const
+    bool needs_velocities() const override
     {
       return static_friction > 0 || dynamic_friction > 0 || normal_damping > 0;
     }
 
     /** Mark surface @p s (0: first body) as a rigid body's. */
-    void set_rigid(const unsigned int s, const bool rigid)
+    void set_rigid(const unsigned int s, const bool rigid) override
     {
       surface[s].rigid = rigid;
     }
 
     /** Let surface @p s be the analytic shape @p a (placed anew each
         step) instead of its mesh faces. */
-    void set_analytic(const unsigned int s, const AnalyticSurface &a)
+    void set_analytic(const unsigned int s, const AnalyticSurface &a) override
     {
       analytic[s] = a;
     }
-    bool has_analytic(const unsigned int s) const
+    bool has_analytic(const unsigned int s) const override
     {
       return analytic[s].shape != nullptr;
     }
 
     /** Lumped masses of the pair's nodes (for the normal damping). */
-    void set_node_masses(const std::vector<double> &masses)
+    void set_node_masses(const std::vector<double> &masses) override
     {
       node_mass = masses;
     }
 
-    std::string  name;
-    std::string  first_body, second_body;
     double       penalty_factor = 0.1;
     bool         symmetric      = true;
     /** Coulomb friction, seed Eq. (62): mu = mu_d + (mu_s - mu_d)

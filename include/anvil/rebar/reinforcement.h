@@ -37,16 +37,11 @@ namespace anvil::Rebar
     void   add_momentum(double dt, std::vector<double> &momentum) const override;
     std::string describe() const override;
     void   write_summary(std::ostream &out) const override;
-    void   write_history(double t) override;
+    void   write_history(double t, double dt) override;
     /** rebar_NAME_NNNN.vtu (line cells: axial force, stress, effective
         plastic strain; bond-slip: slip and bond stress at the nodes) and
         rebar_NAME.pvd. */
     void   output_frame(double t, unsigned int count) override;
-    std::vector<HistoryFile *> history_files() override;
-    void   resize_history_files(unsigned int n) override
-    {
-      files.resize(n);
-    }
     void serialize(StateArchive &ar) override
     {
       for (auto &t : bars)
@@ -56,6 +51,5 @@ namespace anvil::Rebar
   private:
     std::vector<Layout>      layouts;
     std::vector<Trusses>     bars;
-    std::vector<HistoryFile> files;
   };
 } // namespace anvil::Rebar

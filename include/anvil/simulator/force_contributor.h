@@ -43,10 +43,21 @@ namespace anvil
     /** After the mesh, the DoFs and the element groups exist. */
     virtual void setup() = 0;
 
+    /** Once the lumped mass and the boundary conditions exist. */
+    virtual void initialize()
+    {}
+
     /** Add the family's lumped mass to the owned entries of @p mass. */
     virtual void add_mass(VectorType &mass) const
     {
       (void)mass;
+    }
+
+    /** Whether add_forces() adds any (a family that only moves its own
+        state, the rigid bodies, is then not called, nor timed). */
+    virtual bool has_forces() const
+    {
+      return true;
     }
 
     /** Add the forces at time n (the current positions) to the owned
@@ -91,10 +102,11 @@ namespace anvil
       (void)out;
     }
 
-    /** A history row at time @p t (rank 0 writes). */
-    virtual void write_history(double t)
+    /** A history row at time @p t (rank 0 writes); @p dt: the coming step
+        (the velocities at n are v^{n+1/2} - dt/2 a^n). */
+    virtual void write_history(double t, double dt)
     {
-      (void)t;
+      (void)t, (void)dt;
     }
 
     /** The family's own fields of frame @p count (rank 0 writes). */
@@ -104,19 +116,27 @@ namespace anvil
     }
 
     /** Its history files (rank 0), in a fixed order: flushed together with
-        the others, their lengths kept in a checkpoint. */
+        the others, their lengths kept in a checkpoint. By default the
+        family's 'files'. */
     virtual std::vector<HistoryFile *> history_files()
     {
-      return {};
+      std::vector<HistoryFile *> list;
+      for (auto &f : files)
+        list.push_back(&f);
+      return list;
     }
 
-    /** The number of history files to reopen at a restart (resize). */
+    /** The number of history files to reopen at a restart. */
     virtual void resize_history_files(unsigned int n)
     {
-      (void)n;
+      files.resize(n);
     }
 
     /** Everything the steps change, in one order for writing and reading. */
     virtual void serialize(StateArchive &ar) = 0;
+
+  protected:
+    /** The family's history files (rank 0; e.g. one per contact pair). */
+    std::vector<HistoryFile> files;
   };
 } // namespace anvil

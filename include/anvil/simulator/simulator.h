@@ -6,10 +6,12 @@
 #pragma once
 
 #include <anvil/boundary_conditions/boundary_condition.h>
-#include <anvil/contact/penalty_contact.h>
+#include <anvil/contact/contact_pairs.h>
 #include <anvil/element/element_group.h>
 #include <anvil/mesh/body.h>
+#include <anvil/postprocess/interface.h>
 #include <anvil/rebar/rebar.h>
+#include <anvil/rigid_body/rigid_bodies.h>
 #include <anvil/simulator/force_contributor.h>
 #include <anvil/simulator/simulator_access.h>
 
@@ -86,6 +88,33 @@ namespace anvil
     int          group   = -1;
     unsigned int element = 0;
   };
+
+  /** Figures of the run that summary.csv reports (source/simulator/
+      summary.cc); updated every step from replicated data, the probe on
+      rank 0 at each history row. */
+  struct RunSummary
+  {
+    double peak_displacement     = 0;
+    double residual_displacement = 0;
+    double peak_contact_force    = 0;
+    double contact_start = -1, contact_end = -1;
+    double initial_kinetic       = 0;
+    double max_hourglass_ratio   = 0;
+    double max_balance_error     = 0;
+    double peak_reaction         = 0;
+    /** The steps the elements alone would have needed (the sum over steps
+        of dt / dt_elements) and the steps whose size the contact springs
+        set. */
+    double       element_steps         = 0;
+    unsigned int contact_limited_steps = 0;
+    /** Start of the current quiet period (end criterion), -1: none; the
+        first probe's displacement summed over its history rows. */
+    double       quiet_since = -1;
+    double       quiet_displacement_sum = 0;
+    unsigned int quiet_rows = 0;
+    bool   ended_early = false;
+  };
+
 
   /** A stage of a scene (doc/user_guide.md, "Stages"): its name and the
       entries it changes ('PATH=VALUE', as --set), applied to the scene for
@@ -188,8 +217,6 @@ namespace anvil
     void setup_element_groups();
     void assemble_lumped_mass();
     void setup_boundary_conditions();
-    void setup_contact();
-    void setup_rigid_bodies();
     void setup_probes();
     /** At the start of a run and in --check: the elements with the
         smallest stable steps and a warning for distorted ones (scaled
@@ -268,52 +295,22 @@ namespace anvil
         update; @p dt is the coming step (velocities are reported at time
         n as v^{n+1/2} - dt/2 a^n). */
     void write_history(double time, double dt);
+    /** A frame of the fields (@p basename 'solution': the next of the
+        time series; 'last_good') by the postprocessors, and the families'
+        own. */
     void output_results(double time, const std::string &basename);
-    void write_pvd();
     /** The 'status' file of the output directory (rank 0; written whole,
         then renamed over the last one): @p state ('running', 'finished',
         'stopped') and the run's progress, for a user to follow. */
     void write_status(const std::string &state, double time, double wall_seconds,
                       double eta_seconds, const std::string &message = "") const;
-    /** bodies.csv at the end of a run: per body, elements, eroded elements,
-        peak effective plastic strain, current bounding box. */
-    void write_body_summary();
 
-    /** Figures of the run that summary.csv reports (source/simulator/
-        summary.cc); updated every step from replicated data, the probe on
-        rank 0 at each history row. */
-    struct Summary
-    {
-      double peak_displacement     = 0;
-      double residual_displacement = 0;
-      double peak_contact_force    = 0;
-      double contact_start = -1, contact_end = -1;
-      double initial_kinetic       = 0;
-      double max_hourglass_ratio   = 0;
-      double max_balance_error     = 0;
-      double peak_reaction         = 0;
-      /** The steps the elements alone would have needed (the sum over steps
-          of dt / dt_elements) and the steps whose size the contact springs
-          set. */
-      double       element_steps         = 0;
-      unsigned int contact_limited_steps = 0;
-      /** Start of the current quiet period (end criterion), -1: none; the
-          first probe's displacement summed over its history rows. */
-      double       quiet_since = -1;
-      double       quiet_displacement_sum = 0;
-      unsigned int quiet_rows = 0;
-      bool   ended_early = false;
-    };
-    Summary summary;
+    /** Figures of the run that summary.csv reports (RunSummary). */
+    RunSummary summary;
     /** Per step: the summary figures and the end criterion; true when the
         criterion says the run ends now. */
     bool update_summary(double time);
     void record_probe_summary(const std::vector<double> &probe_values);
-    void write_summary(double wall_time);
-    /** PNG plots of the histories (scripts/anvil_plot.py, copied beside
-        the executable), rank 0; a missing Python or matplotlib skips them
-        with a line. */
-    void write_plots();
 
     MPI_Comm                   mpi_communicator;
     dealii::ConditionalOStream pcout;
@@ -356,8 +353,6 @@ namespace anvil
         @p book_energy their kinetic energy and that of their pairs'
         springs is booked as removed (a stage's start). */
     void        remove_inactive_bodies(bool book_energy);
-    /** Per contact pair: whether it involves an inactive body (skipped). */
-    std::vector<unsigned char> pair_inactive;
     /** 'Maximum time step' (<= 0: no bound): a constant, or a function of
         t when the entry names t. */
     double                                     max_dt_constant = 0;
@@ -376,11 +371,10 @@ namespace anvil
 
     std::vector<Body>                     bodies;
     std::vector<BoundaryCondition>        boundary_conditions;
-    std::vector<Contact::PenaltyContact>  contact_pairs;
     std::vector<Probe>                    probes;
     /** The families that add forces beside the element groups and the
-        contact pairs, in the order the step calls them (today: the
-        reinforcement; ForceContributor). */
+        contact pairs, in the order the step calls them (the rigid bodies,
+        the reinforcement; ForceContributor). */
     std::vector<std::unique_ptr<ForceContributor>> families;
 
     // Discretisation
@@ -407,17 +401,12 @@ namespace anvil
     VectorType good_position, good_velocity;
     double     good_time = 0;
 
-    /** Per body: the owned nodes of a rigid body (local x-dof index and
-        reference position); empty for deformable bodies. And a mask of the
-        owned dofs that belong to rigid bodies. */
-    std::vector<std::vector<std::pair<unsigned int, dealii::Point<3>>>> rigid_nodes;
-    std::vector<unsigned char>                                          rigid_dof;
-    /** Per body: force and torque (about the centre) on a rigid body from
-        analytic contact shapes, this step (replicated on every rank). */
-    std::vector<dealii::Tensor<1, 3>> rigid_shape_force, rigid_shape_torque;
-    std::vector<HistoryFile>          rigid_files;
-    void advance_rigid_bodies(double dt_previous, double dt, double &kinetic, double &work,
-                              double &step_change);
+    /** A mask of the owned dofs that belong to rigid bodies (empty: no
+        rigid bodies), set by the rigid-body family. */
+    std::vector<unsigned char> rigid_dof;
+    /** The rigid-body family (one of 'families'): the contact pairs hand
+        it the reactions of analytic shapes. */
+    RigidBody::RigidBodies *rigid_bodies = nullptr;
 
     /** Constrained dofs (local indices) and their prescribed velocities. */
     std::vector<unsigned int> constrained_dofs;
@@ -430,13 +419,14 @@ namespace anvil
         the support exerts on the body). */
     std::vector<unsigned int> constrained_bc;
     std::vector<double>       bc_reaction;
-    HistoryFile               reaction_file;
 
-    /** Per contact pair: local index of each pair node's x dof on this rank
-        if owned, else -1; and the gather/scatter buffers. */
-    std::vector<std::vector<long>>   contact_local_index;
-    std::vector<std::vector<double>> contact_positions, contact_velocities, contact_forces;
-    std::vector<Contact::ContactResult> contact_results;
+    /** The contact pairs: a family of their own, evaluated after the
+        element forces and erosion (apply_contact). */
+    std::unique_ptr<Contact::ContactPairs> contact;
+    /** Every family for the hooks that are not the forces (setup, energy
+        and momentum terms, histories, fields, summary, checkpoint): the
+        families in their order, then the contact pairs. */
+    std::vector<ForceContributor *> contributors() const;
 
     // Energy bookkeeping
     Energies     energies;
@@ -451,11 +441,6 @@ namespace anvil
     /** Consecutive steps with the step-change energy creating more than
         the tolerance. */
     unsigned int step_change_steps = 0;
-    /** Largest k/m of the contact penalty springs (all pairs); the stable
-        step is 2 / sqrt(omega_e^2 + omega_c^2) with omega_e = 2 / dt_e. */
-    double       contact_frequency_squared = 0;
-    /** The analytic contact shapes of rigid bodies, placed for pair p. */
-    void place_analytic_shapes(unsigned int p);
     double       current_dt     = 0;
     unsigned int step_number    = 0;
     double       time           = 0;
@@ -472,9 +457,12 @@ namespace anvil
     unsigned long            n_eroded = 0;
     std::vector<std::string> erosion_rows;
 
-    // Files (rank 0)
-    HistoryFile                  energy_file, momentum_file, erosion_file;
-    std::vector<HistoryFile>     probe_files, contact_files;
+    /** What the run writes besides the families' histories, in their
+        order (source/postprocess/, Postprocess::Interface). */
+    std::vector<std::unique_ptr<Postprocess::Interface>> postprocessors;
+    /** Every history file (rank 0) in a fixed order: the postprocessors',
+        then the families'. */
+    std::vector<HistoryFile *> history_files() const;
     /** Write the rows every history holds, all together (rank 0); a write
         error is kept in output_failure, shared with the other ranks at the
         next health check. */
@@ -487,9 +475,7 @@ namespace anvil
         (rank 0). */
     void                         record_output(const std::string &name);
     std::set<std::string>        recorded_outputs;
-    /** solution.pvd, rewritten (atomically) with each frame. */
-    void                         write_frame_index();
-    std::vector<std::pair<double, std::string>> pvd_records;
+    /** The frames of the time series so far. */
     unsigned int                 output_count = 0;
   };
 

@@ -13,6 +13,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <string>
@@ -24,7 +25,11 @@ namespace anvil
 
   class Simulator;
   struct Energies;
+  struct RunSummary;
+  struct Probe;
   class Body;
+  class BoundaryCondition;
+  class ForceContributor;
   namespace Element
   {
     class ElementGroup;
@@ -65,6 +70,47 @@ namespace anvil
     double            get_time() const;
     unsigned int      get_step_number() const;
     Energies         &get_energies() const;
+
+    double            get_initial_energy() const;
+    /** The balance error of the last history row: |E_total - E_0 - W_ext|
+        over the balance scale. */
+    double            get_balance_error() const;
+
+    // The run's figures, outputs and the families
+    const std::string &get_scene_name() const;
+    RunSummary        &get_summary() const;
+    const std::vector<Probe> &get_probes() const;
+    /** On rank 0, at each history row: the first probe's displacement for
+        the summary and the end criterion. */
+    void               record_probe_summary(const std::vector<double> &probe_values) const;
+    const std::vector<BoundaryCondition> &get_boundary_conditions() const;
+    /** This process's part of each condition's reaction (3 per condition),
+        and the largest magnitudes so far (rank 0). */
+    const std::vector<double> &get_bc_reaction() const;
+    std::vector<double>       &get_peak_bc_reaction() const;
+    /** 'Capacity support' and the intact member's capacity (damage index). */
+    const std::string         &get_capacity_support() const;
+    double                     get_intact_capacity() const;
+    /** Mass-proportional damping: whether the scene has it, and its force
+        on the owned dof @p i this step. */
+    bool                       has_mass_damping() const;
+    double                     damping_force(unsigned int i) const;
+    /** Per owned dof: its body and component, and whether a rigid body's
+        (empty: no rigid bodies). */
+    const std::vector<unsigned char> &get_dof_body() const;
+    const std::vector<unsigned char> &get_dof_component() const;
+    const std::vector<unsigned char> &get_rigid_dof() const;
+    /** The body of each element group. */
+    const std::vector<unsigned int> &get_group_body() const;
+    const dealii::FESystem<3>        &get_fe() const;
+    /** Eroded elements so far (scene-wide), and the rows of erosion.csv
+        the step made and no one has written yet. */
+    unsigned long                     n_eroded_elements() const;
+    std::vector<std::string>         &get_erosion_rows() const;
+    /** The families (rigid bodies, reinforcement, contact pairs). */
+    std::vector<ForceContributor *>   get_families() const;
+    bool                              has_contact() const;
+    bool                              plots_requested() const;
 
     /** Note the output file @p name (in the output directory) as this
         run's before writing it (rank 0). */

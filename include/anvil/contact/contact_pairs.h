@@ -1,0 +1,92 @@
+/**
+ * @file
+ * The contact pairs of a scene as one family: their surfaces (every boundary
+ * face of the two bodies), the gather of the pair's node positions, the
+ * evaluation by each pair's algorithm (Contact::Algorithm), the forces on
+ * the owned nodes, the springs' bound on the step, contact_NAME.csv and the
+ * pairs' part of a checkpoint.
+ */
+#pragma once
+
+#include <anvil/contact/interface.h>
+#include <anvil/rigid_body/rigid_bodies.h>
+#include <anvil/simulator/force_contributor.h>
+
+#include <memory>
+
+namespace anvil::Contact
+{
+  class ContactPairs : public ForceContributor
+  {
+  public:
+    /** @p inactive: per pair, whether it involves a body a stage took out
+        (then skipped); @p rigid_bodies receives the reactions of analytic
+        shapes. */
+    ContactPairs(Simulator                               &simulator,
+                 std::vector<std::unique_ptr<Algorithm>>  pairs,
+                 std::vector<unsigned char>               inactive,
+                 RigidBody::RigidBodies                  &rigid_bodies);
+
+    std::string name() const override
+    {
+      return "contact";
+    }
+    bool empty() const override
+    {
+      return pairs.empty();
+    }
+    void setup() override
+    {}
+    /** The surfaces: each rank lists the boundary faces of its own cells,
+        all ranks then hold the whole surface; the pair nodes' masses. */
+    void initialize() override;
+    /** Gather each active pair's node positions (and velocities), evaluate
+        it, add the forces of the owned nodes. The springs bound the step
+        through frequency_squared(), not through the returned value. */
+    double add_forces(double dt) override;
+    std::string describe() const override;
+    void   write_history(double t, double dt) override;
+    void serialize(StateArchive &ar) override;
+
+    /** The largest k/m of the springs in reach (all pairs), held against
+        a quick fall: omega_c^2 of the stable step. */
+    double frequency_squared() const
+    {
+      return contact_frequency_squared;
+    }
+    /** The faces of the eroded elements @p ids (sorted, scene-wide) leave
+        every pair. */
+    void deactivate_elements(const std::vector<unsigned long> &ids);
+    /** The pairs of the bodies a stage takes out: their springs' energy
+        (returned) leaves with them. */
+    double remove_inactive();
+
+    unsigned int n_pairs() const
+    {
+      return pairs.size();
+    }
+    const Algorithm &pair(const unsigned int p) const
+    {
+      return *pairs[p];
+    }
+    const std::vector<ContactResult> &results() const
+    {
+      return contact_results;
+    }
+
+  private:
+    /** Place the analytic shapes of the rigid bodies of pair @p p (at n+1,
+        like the positions; their velocities are the half-step ones). */
+    void place_analytic_shapes(unsigned int p);
+
+    std::vector<std::unique_ptr<Algorithm>> pairs;
+    std::vector<unsigned char>              inactive;
+    RigidBody::RigidBodies                 &rigid_bodies;
+    /** Per pair: local index of each pair node's x dof on this rank if
+        owned, else -1; and the gather/scatter buffers. */
+    std::vector<std::vector<long>>   local_index;
+    std::vector<std::vector<double>> positions, velocities, forces;
+    std::vector<ContactResult>       contact_results;
+    double                           contact_frequency_squared = 0;
+  };
+} // namespace anvil::Contact

@@ -1,0 +1,203 @@
+/**
+ * @file
+ * Contact algorithms: what a contact pair computes, behind one interface,
+ * and their registry. An algorithm registers itself with
+ * ANVIL_REGISTER_CONTACT_ALGORITHM at the bottom of its .cc file, as a
+ * material model does; a scene picks it with 'Contact pair NAME/Algorithm'
+ * (Anvil's own: 'penalty', the symmetric node-to-segment penalty method). A
+ * plugin's algorithm (doc/extending.md) loads with 'Additional shared
+ * libraries' and takes part like Anvil's own.
+ *
+ * The family that holds the pairs (Contact::ContactPairs) gathers each
+ * pair's node positions (and velocities if it asks for them), calls
+ * compute_forces() and scatters the forces to the nodes each rank owns; an
+ * algorithm sees only the pair's nodes, in the order of node_dofs().
+ */
+#pragma once
+
+#include <anvil/rigid_body/rigid_body.h>
+#include <anvil/utilities/state_archive.h>
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil::Contact
+{
+  /** The placement of a rigid body's analytic contact shape. */
+  struct AnalyticSurface
+  {
+    const RigidBody::Shape *shape = nullptr;
+    dealii::Point<3>        centre, reference_centre;
+    dealii::Tensor<2, 3>    rotation;
+    dealii::Tensor<1, 3>    velocity, angular_velocity;
+  };
+
+  /** One segment as the simulator hands it over, with global dof indices. */
+  struct SegmentDescription
+  {
+    std::array<unsigned long, 4> x_dof;
+    std::array<double, 12>       reference_position;
+    /** Bulk modulus and reference volume of the segment's element. */
+    double bulk_modulus;
+    double volume;
+    /** Scene-wide id of the segment's element. */
+    unsigned long element = 0;
+  };
+
+  /** What a contact evaluation reports. */
+  struct ContactResult
+  {
+    /** Sum of the contact forces on the first body's nodes. Units: N. */
+    std::array<double, 3> force_on_first = {{0, 0, 0}};
+    /** Deepest penetration found in either pass. Units: m. */
+    double max_penetration = 0;
+    /** Largest penetration as a fraction of the current thickness V / A of
+        the element that the penalty spring stands for. Units: none. */
+    double max_penetration_ratio = 0;
+    /** Work done so far on the penalty springs, the sum over steps of
+        1/2 (f^{n-1} + f^n) (l^n - l^{n-1}) per spring: 1/2 k l^2 while k is
+        constant, and the energy balance stays closed when k follows the
+        current geometry. Units: J. */
+    double energy = 0;
+    /** The square of the highest frequency that the springs which act, or
+        may act within the next step (a slave node within the thickness of
+        its partner's element), can add: a bound per node from the springs
+        on it and its mass. Units: 1/s^2. */
+    double frequency_squared = 0;
+    /** Work done this step against the friction forces (dissipated, or
+        stored in sticking tangential springs), >= 0 for sliding, and
+        dissipated by the normal damping. Units: J. */
+    double friction_work = 0;
+    /** Sum of the friction forces on the first body's nodes. Units: N. */
+    std::array<double, 3> friction_on_first = {{0, 0, 0}};
+    /** Resultant force and torque (about the body's centre) on a rigid
+        body's analytic shape. Units: N, N m. */
+    dealii::Tensor<1, 3> shape_force, shape_torque;
+    /** Number of active slave nodes (both passes). */
+    unsigned int n_active = 0;
+    /** Slave nodes in contact last step that are now deeper than the
+        element they pressed on (passed through the master surface), and
+        the largest such depth over the element's thickness. */
+    unsigned int n_passed_through     = 0;
+    double       passed_through_ratio = 0;
+  };
+
+  /**
+   * One contact pair's algorithm. The names are set before
+   * parse_parameters(); everything else is the algorithm's own.
+   */
+  class Algorithm
+  {
+  public:
+    virtual ~Algorithm() = default;
+
+    /** Read the algorithm's entries (in the pair's subsection; a plugin's
+        in a subsection of its own name, declared by its
+        declare_parameters). InputError with one line on bad input. */
+    virtual void parse_parameters(dealii::ParameterHandler &prm) = 0;
+
+    /** A line the scene's reading prints (a warning), or empty. */
+    virtual std::string parse_note() const
+    {
+      return "";
+    }
+
+    /** Build the pair from all ranks' boundary faces of the two bodies. */
+    virtual void setup(const std::vector<SegmentDescription> &first,
+                       const std::vector<SegmentDescription> &second) = 0;
+
+    /** Global x-dof indices of the pair's nodes, in the pair's order. */
+    virtual const std::vector<unsigned long> &node_dofs() const = 0;
+
+    /** Surface @p s (0: the first body) is a rigid body's. */
+    virtual void set_rigid(unsigned int s, bool rigid) = 0;
+
+    /** Surface @p s is the analytic shape @p a (placed anew each step). */
+    virtual void set_analytic(unsigned int s, const AnalyticSurface &a)
+    {
+      (void)s, (void)a;
+    }
+    virtual bool has_analytic(unsigned int s) const
+    {
+      (void)s;
+      return false;
+    }
+
+    /** Lumped masses of the pair's nodes. */
+    virtual void set_node_masses(const std::vector<double> &masses)
+    {
+      (void)masses;
+    }
+
+    /** Whether compute_forces() needs the nodes' velocities. */
+    virtual bool needs_velocities() const
+    {
+      return false;
+    }
+
+    /** Add the contact forces at positions @p x (3 per pair node; @p v the
+        velocities of the step @p dt that led there, if asked for) to @p f;
+        @p dt = 0: an evaluation that changes no state. */
+    virtual ContactResult compute_forces(const std::vector<double> &x,
+                                         const std::vector<double> &v,
+                                         double                     dt,
+                                         std::vector<double>       &f) = 0;
+
+    /** The faces of the eroded elements @p ids (sorted) leave the pair. */
+    virtual void deactivate_elements(const std::vector<unsigned long> &ids)
+    {
+      (void)ids;
+    }
+
+    /** Everything a step changes (checkpoints). */
+    virtual void serialize(StateArchive &ar) = 0;
+
+    std::string name;
+    std::string first_body, second_body;
+  };
+
+
+  struct AlgorithmEntry
+  {
+    std::string                                     description;
+    std::function<void(dealii::ParameterHandler &)> declare_parameters;
+    std::function<std::unique_ptr<Algorithm>()>     create;
+  };
+
+  /** All registered algorithms, by name. */
+  std::map<std::string, AlgorithmEntry> &algorithm_registry();
+
+  /** Called by ANVIL_REGISTER_CONTACT_ALGORITHM. */
+  bool register_algorithm(const std::string &name, AlgorithmEntry entry);
+
+  /** In a 'Contact pair NAME' subsection: 'Algorithm', 'First body',
+      'Second body' and every registered algorithm's entries. */
+  void declare_parameters(dealii::ParameterHandler &prm);
+
+  /** The algorithm the pair @p pair_name selects, its names set and its
+      entries read (the pair's subsection is the current one). */
+  std::unique_ptr<Algorithm> create(dealii::ParameterHandler &prm, const std::string &pair_name);
+} // namespace anvil::Contact
+
+/**
+ * Register contact algorithm @p classname under @p name. Put this at the
+ * bottom of the algorithm's .cc file, in namespace anvil::Contact.
+ */
+#define ANVIL_REGISTER_CONTACT_ALGORITHM(classname, name, description) \
+  namespace                                                             \
+  {                                                                     \
+    const bool anvil_registered_contact_##classname =                   \
+      ::anvil::Contact::register_algorithm(                             \
+        name,                                                           \
+        {description,                                                   \
+         &classname::declare_parameters,                                \
+         []() { return std::make_unique<classname>(); }});              \
+  }

@@ -1,0 +1,285 @@
+/**
+ * @file
+ * The contact pairs of a scene as one family (contact/contact_pairs.h).
+ */
+#include <anvil/contact/contact_pairs.h>
+#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iomanip>
+
+namespace anvil::Contact
+{
+  using namespace dealii;
+
+  ContactPairs::ContactPairs(Simulator                               &simulator,
+                             std::vector<std::unique_ptr<Algorithm>>  pairs,
+                             std::vector<unsigned char>               inactive,
+                             RigidBody::RigidBodies                  &rigid_bodies)
+    : ForceContributor(simulator)
+    , pairs(std::move(pairs))
+    , inactive(std::move(inactive))
+    , rigid_bodies(rigid_bodies)
+  {}
+
+
+  // @sect3{Contact surfaces}
+  //
+  // Every boundary face of a body in a pair is a segment. Each rank lists
+  // the segments of its own cells; all ranks then hold the whole surface.
+  void ContactPairs::initialize()
+  {
+    const auto        &bodies           = get_bodies();
+    const auto        &dof_handler      = get_dof_handler();
+    const VectorType  &position         = get_position();
+    const VectorType  &mass             = get_mass();
+    const MPI_Comm     mpi_communicator = get_mpi_communicator();
+    const std::string &scene_file       = get_scene_file();
+    const unsigned int n_pairs          = pairs.size();
+    local_index.assign(n_pairs, {});
+    positions.assign(n_pairs, {});
+    velocities.assign(n_pairs, {});
+    forces.assign(n_pairs, {});
+    contact_results.assign(n_pairs, {});
+    contact_frequency_squared = 0;
+    auto body_index = [&](const std::string &name) {
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b].name == name)
+          return b;
+      return numbers::invalid_unsigned_int;
+    };
+    for (unsigned int p = 0; p < n_pairs; ++p)
+      {
+        std::vector<Contact::SegmentDescription> segments[2];
+        const unsigned int body[2] = {body_index(pairs[p]->first_body),
+                                      body_index(pairs[p]->second_body)};
+        for (unsigned int s = 0; s < 2; ++s)
+          {
+            std::vector<double> local;
+            for (const auto &cell : dof_handler.active_cell_iterators())
+              if (cell->is_locally_owned() && cell->material_id() == body[s])
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary())
+                    {
+                      const auto   face     = cell->face(f);
+                      const double V        = cell->measure();
+                      const double K        = bodies[body[s]].material->bulk_modulus();
+                      constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
+                      Point<3>               p[4];
+                      for (unsigned int k = 0; k < 4; ++k)
+                        p[k] = face->vertex(cyclic[k]);
+                      const Tensor<1, 3> n = cross_product_3d(p[1] - p[0], p[3] - p[0]);
+                      const bool flip = n * (face->center() - cell->center()) < 0;
+                      for (unsigned int k = 0; k < 4; ++k)
+                        {
+                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
+                          local.push_back(face->vertex_dof_index(kk, 0));
+                        }
+                      for (unsigned int k = 0; k < 4; ++k)
+                        {
+                          const unsigned int kk = flip ? cyclic[3 - k] : cyclic[k];
+                          for (unsigned int d = 0; d < 3; ++d)
+                            local.push_back(face->vertex(kk)[d]);
+                        }
+                      local.push_back(K);
+                      local.push_back(V);
+                      local.push_back(cell->id().get_coarse_cell_id());
+                    }
+            for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+              for (std::size_t i = 0; i < part.size(); i += 19)
+                {
+                  Contact::SegmentDescription d;
+                  for (unsigned int k = 0; k < 4; ++k)
+                    d.x_dof[k] = static_cast<unsigned long>(part[i + k]);
+                  for (unsigned int k = 0; k < 12; ++k)
+                    d.reference_position[k] = part[i + 4 + k];
+                  d.bulk_modulus = part[i + 16];
+                  d.volume       = part[i + 17];
+                  d.element   = static_cast<unsigned long>(part[i + 18]);
+                  segments[s].push_back(d);
+                }
+          }
+        pairs[p]->setup(segments[0], segments[1]);
+        for (unsigned int s = 0; s < 2; ++s)
+          pairs[p]->set_rigid(s, bodies[body[s]].is_rigid());
+        if (bodies[body[0]].is_rigid() && bodies[body[1]].is_rigid())
+          throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
+                           "': both bodies are rigid");
+        const auto &dofs = pairs[p]->node_dofs();
+        local_index[p].resize(dofs.size());
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          local_index[p][i] =
+            dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
+              long(position.get_partitioner()->global_to_local(dofs[i])) :
+              -1;
+        // The pair's node masses (normal damping, the springs' frequency in
+        // the stable step, which each evaluation updates).
+        std::vector<double> m(dofs.size(), 0.);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          if (local_index[p][i] >= 0)
+            m[i] = mass.local_element(local_index[p][i]);
+        Utilities::MPI::sum(m, mpi_communicator, m);
+        pairs[p]->set_node_masses(m);
+        place_analytic_shapes(p);
+        positions[p].resize(3 * dofs.size());
+        if (pairs[p]->needs_velocities())
+          velocities[p].resize(3 * dofs.size());
+        forces[p].resize(3 * dofs.size());
+      }
+  }
+
+
+  // @sect3{Contact}
+  //
+  // Positions of each pair's nodes are gathered to every rank, every rank
+  // evaluates the pair, and each keeps the forces on the nodes it owns.
+  double ContactPairs::add_forces(const double dt_previous)
+  {
+    const auto       &bodies           = get_bodies();
+    const VectorType &position         = get_position();
+    const VectorType &velocity         = get_velocity();
+    VectorType       &force            = get_force();
+    Energies         &energies         = get_energies();
+    const MPI_Comm    mpi_communicator = get_mpi_communicator();
+    rigid_bodies.clear_shape_reactions();
+    // The springs in reach bound the step at once; once they leave, the
+    // bound relaxes over some hundred steps (omega^2 by 1 % a step, the step
+    // by 0.5 %). A step that jumps back and forth as nodes enter and leave
+    // the reach of their partners resonates with the mesh (the energy
+    // error of the variable-step scheme, energies.step_change).
+    const double held_frequency_squared = 0.99 * contact_frequency_squared;
+    contact_frequency_squared           = 0;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        if (inactive[p])
+          continue;
+        auto &xs = positions[p];
+        auto &vs = velocities[p];
+        auto &fs = forces[p];
+        std::fill(xs.begin(), xs.end(), 0.);
+        std::fill(vs.begin(), vs.end(), 0.);
+        std::fill(fs.begin(), fs.end(), 0.);
+        const auto &index = local_index[p];
+        for (unsigned int i = 0; i < index.size(); ++i)
+          if (index[i] >= 0)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                xs[3 * i + d] = position.local_element(index[i] + d);
+                if (!vs.empty())
+                  vs[3 * i + d] = velocity.local_element(index[i] + d);
+              }
+        Utilities::MPI::sum(xs, mpi_communicator, xs);
+        if (!vs.empty())
+          Utilities::MPI::sum(vs, mpi_communicator, vs);
+        place_analytic_shapes(p);
+        int shape_body = -1;
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          if ((bodies[b].name == pairs[p]->first_body && pairs[p]->has_analytic(0)) ||
+              (bodies[b].name == pairs[p]->second_body && pairs[p]->has_analytic(1)))
+            shape_body = b;
+        contact_results[p] = pairs[p]->compute_forces(xs, vs, dt_previous, fs);
+        // The springs in contact, or within reach by the next step, bound
+        // the next step (replicated: the same on every rank).
+        contact_frequency_squared =
+          std::max(contact_frequency_squared, contact_results[p].frequency_squared);
+        if (shape_body >= 0)
+          {
+            rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
+                                             contact_results[p].shape_torque);
+          }
+        // Replicated evaluation: every rank has the same friction work.
+        energies.friction += contact_results[p].friction_work;
+        for (unsigned int i = 0; i < index.size(); ++i)
+          if (index[i] >= 0)
+            for (unsigned int d = 0; d < 3; ++d)
+              force.local_element(index[i] + d) += fs[3 * i + d];
+      }
+    contact_frequency_squared = std::max(contact_frequency_squared, held_frequency_squared);
+    return 1e300;
+  }
+
+
+  void ContactPairs::place_analytic_shapes(const unsigned int p)
+  {
+    const auto &bodies = get_bodies();
+    const std::string names[2] = {pairs[p]->first_body, pairs[p]->second_body};
+    for (unsigned int s = 0; s < 2; ++s)
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
+            bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
+          {
+            const auto              &m = bodies[b].rigid;
+            Contact::AnalyticSurface a;
+            a.shape            = &m.shape;
+            a.centre           = m.centre;
+            a.reference_centre = m.reference_centre;
+            a.rotation         = m.rotation;
+            a.velocity         = m.velocity;
+            a.angular_velocity = m.angular_velocity;
+            pairs[p]->set_analytic(s, a);
+          }
+  }
+
+
+  void ContactPairs::deactivate_elements(const std::vector<unsigned long> &ids)
+  {
+    for (auto &pair : pairs)
+      pair->deactivate_elements(ids);
+  }
+
+
+  double ContactPairs::remove_inactive()
+  {
+    double energy = 0;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      if (inactive[p])
+        {
+          energy += contact_results[p].energy;
+          contact_results[p] = ContactResult();
+        }
+    return energy;
+  }
+
+
+  std::string ContactPairs::describe() const
+  {
+    unsigned int active = 0;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      active += inactive[p] ? 0 : 1;
+    return active == 0 ? "no contact" :
+                         "contact in " + std::to_string(active) + " pair" + (active == 1 ? "" : "s");
+  }
+
+
+  void ContactPairs::write_history(const double t, double)
+  {
+    if (files.empty())
+      for (const auto &c : pairs)
+        {
+          record_output("contact_" + c->name + ".csv");
+          files.emplace_back(get_output_directory() + "/contact_" + c->name + ".csv");
+          files.back() << "time,normal_force_x,normal_force_y,normal_force_z,max_penetration,"
+                          "friction_force_x,friction_force_y,friction_force_z,max_penetration_ratio,"
+                          "active_nodes\n";
+        }
+    for (unsigned int c = 0; c < pairs.size(); ++c)
+      {
+        const auto &r = contact_results[c];
+        files[c] << std::setprecision(12) << t << ',' << r.force_on_first[0] << ',' << r.force_on_first[1]
+                 << ',' << r.force_on_first[2] << ',' << r.max_penetration << ',' << r.friction_on_first[0]
+                 << ',' << r.friction_on_first[1] << ',' << r.friction_on_first[2] << ','
+                 << r.max_penetration_ratio << ',' << r.n_active << '\n';
+      }
+  }
+
+
+
+  void ContactPairs::serialize(StateArchive &ar)
+  {
+    ar &contact_frequency_squared &contact_results &positions &velocities &forces;
+    for (auto &c : pairs)
+      c->serialize(ar);
+  }
+} // namespace anvil::Contact

@@ -1,0 +1,108 @@
+/**
+ * @file
+ * summary.csv: the figures of a run that studies and tests read (peak and
+ * residual displacement of the first probe, peak force and duration of the
+ * first contact pair, support reactions and the damage index, energy
+ * conversion, hourglass share, balance, cost), two columns
+ * 'quantity,value' with the units in the names; written under a temporary
+ * name and renamed, so a reader never sees half a file.
+ */
+#include <anvil/boundary_conditions/boundary_condition.h>
+#include <anvil/postprocess/interface.h>
+#include <anvil/simulator/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace anvil::Postprocess
+{
+  using namespace dealii;
+
+  class Summary : public Interface
+  {
+  public:
+    using Interface::Interface;
+
+    /** After the last frame and bodies.csv. */
+    int order() const override
+    {
+      return 30;
+    }
+
+    void end_of_run(const double wall_time) override
+    {
+      if (!is_root())
+        return;
+      const auto &summary             = get_summary();
+      const auto &energies            = get_energies();
+      const auto &boundary_conditions = get_boundary_conditions();
+      const auto &peak_bc_reaction    = get_peak_bc_reaction();
+      record_output("summary.csv");
+      std::ostringstream out;
+      {
+        out << std::setprecision(10) << "quantity,value\n";
+        out << "end_time_s," << get_time() << '\n';
+        out << "ended_by_criterion," << (summary.ended_early ? 1 : 0) << '\n';
+        if (!get_probes().empty())
+          {
+            out << "peak_displacement_m," << summary.peak_displacement << '\n';
+            // Residual: when the end criterion ended the run, the mean over
+            // its quiet period (the member still rings about its residual
+            // shape); else the last value.
+            out << "residual_displacement_m,"
+                << (summary.ended_early && summary.quiet_rows > 0 ?
+                      summary.quiet_displacement_sum / summary.quiet_rows :
+                      summary.residual_displacement)
+                << '\n';
+          }
+        if (has_contact())
+          {
+            out << "peak_contact_force_N," << summary.peak_contact_force << '\n';
+            out << "contact_duration_s,"
+                << (summary.contact_start < 0 ? 0. : summary.contact_end - summary.contact_start)
+                << '\n';
+          }
+        if (!boundary_conditions.empty())
+          out << "peak_support_reaction_N," << summary.peak_reaction << '\n';
+        for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
+          out << "peak_reaction_" << boundary_conditions[b].name << "_N," << peak_bc_reaction[b] << '\n';
+        for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
+          if (boundary_conditions[b].name == get_capacity_support())
+            {
+              out << "axial_capacity_N," << peak_bc_reaction[b] << '\n';
+              if (get_intact_capacity() > 0)
+                out << "damage_index," << 1. - peak_bc_reaction[b] / get_intact_capacity() << '\n';
+            }
+        out << "initial_energy_J," << get_initial_energy() << '\n';
+        out << "final_kinetic_energy_J," << energies.kinetic << '\n';
+        out << "kinetic_energy_converted,"
+            << (summary.initial_kinetic > 0 ? 1. - energies.kinetic / summary.initial_kinetic : 0.)
+            << '\n';
+        out << "internal_energy_J," << energies.internal << '\n';
+        out << "hourglass_energy_J," << energies.hourglass << '\n';
+        out << "viscous_energy_J," << energies.viscous << '\n';
+        if (has_mass_damping() || energies.damping != 0)
+          out << "damping_energy_J," << energies.damping << '\n';
+        if (energies.removed != 0)
+          out << "removed_energy_J," << energies.removed << '\n';
+        out << "max_hourglass_to_internal," << summary.max_hourglass_ratio << '\n';
+        out << "max_balance_error," << summary.max_balance_error << '\n';
+        out << "wall_time_s," << wall_time << '\n';
+        out << "steps," << get_step_number() << '\n';
+        // What the contact springs cost: the steps the elements alone would
+        // have needed, and how many steps the springs made smaller.
+        out << "steps_elements_only," << summary.element_steps << '\n';
+        out << "contact_limited_steps," << summary.contact_limited_steps << '\n';
+        for (const auto *family : get_families())
+          family->write_summary(out);
+        out << "elements," << get_triangulation().n_global_active_cells() << '\n';
+        out << "processes," << Utilities::MPI::n_mpi_processes(get_mpi_communicator()) << '\n';
+      }
+      write_atomically(get_output_directory() + "/summary.csv", out.str());
+    }
+  };
+
+  ANVIL_REGISTER_POSTPROCESSOR(Summary, "summary", "summary.csv: the run's figures at its end.")
+} // namespace anvil::Postprocess
