@@ -72,10 +72,7 @@ namespace anvil::Postprocess
         'files'. */
     virtual std::vector<HistoryFile *> history_files()
     {
-      std::vector<HistoryFile *> list;
-      for (auto &f : files)
-        list.push_back(&f);
-      return list;
+      return pointers_to(files);
     }
     /** The number of history files to reopen at a restart. */
     virtual void resize_history_files(unsigned int n)

@@ -120,10 +120,7 @@ namespace anvil
         family's 'files'. */
     virtual std::vector<HistoryFile *> history_files()
     {
-      std::vector<HistoryFile *> list;
-      for (auto &f : files)
-        list.push_back(&f);
-      return list;
+      return pointers_to(files);
     }
 
     /** The number of history files to reopen at a restart. */

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace anvil
 {
@@ -87,4 +88,14 @@ namespace anvil
     long               written = 0;
     std::ostringstream buffer;
   };
+
+
+  /** Pointers to each of @p files (a family's or postprocessor's list). */
+  inline std::vector<HistoryFile *> pointers_to(std::vector<HistoryFile> &files)
+  {
+    std::vector<HistoryFile *> list;
+    for (auto &f : files)
+      list.push_back(&f);
+    return list;
+  }
 } // namespace anvil
