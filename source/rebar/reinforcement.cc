@@ -316,7 +316,7 @@ namespace anvil::Rebar
 
   // Rebar mass m_r = rho A (half the adjacent element lengths) to the host
   // nodes as N_I m_r: the embedded constraint conserves momentum.
-  void Reinforcement::add_mass(VectorType &mass) const
+  void Reinforcement::add_mass(VectorType &mass)
   {
     for (unsigned int r = 0; r < bars.size(); ++r)
       {

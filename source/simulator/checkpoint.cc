@@ -29,13 +29,10 @@ namespace anvil
   {
     ar &position &velocity &force &mass &good_position &good_velocity &good_time;
     ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
-      &step_change_steps &current_dt &step_number &time &inverted_cell
-        &growth_steps &negative_steps &first_dt &n_eroded &erosion_rows &output_count
+      &step_change_steps &current_dt &step_number &time &growth_steps &negative_steps &first_dt &output_count
           &summary &loop &peak_bc_reaction &stage_start &damping_force_old;
     // (The prescribed velocities are the scene's, not state: a new stage may change them.)
     ar &constrained_reaction &constrained_velocity_old &bc_reaction;
-    for (auto &g : element_groups)
-      g.serialize(ar);
     for (auto *family : contributors())
       family->serialize(ar);
     for (auto &postprocessor : postprocessors)

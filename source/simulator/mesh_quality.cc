@@ -93,9 +93,9 @@ namespace anvil
       double        body, x, y, z;
     };
     std::vector<Entry> entries;
-    for (unsigned int g = 0; g < element_groups.size(); ++g)
+    for (unsigned int g = 0; g < solids->groups().size(); ++g)
       {
-        const auto &group    = element_groups[g];
+        const auto &group    = solids->groups()[g];
         const auto &material = group.get_material();
         if (material.is_rigid())
           continue;
@@ -105,7 +105,7 @@ namespace anvil
             {
               double     X[8][3];
               const auto nodes = group.element_nodes(e);
-              Entry      entry{0, 0, group.element_global_id(e), double(group_body[g]), 0, 0, 0};
+              Entry      entry{0, 0, group.element_global_id(e), double(solids->group_body()[g]), 0, 0, 0};
               for (unsigned int n = 0; n < 8; ++n)
                 for (unsigned int d = 0; d < 3; ++d)
                   X[n][d] = reference_position.local_element(nodes[n] + d);

@@ -828,6 +828,7 @@ namespace anvil
             prm.leave_subsection();
             check_body(rebar_layouts[i].host, "Rebar " + rebar_names[i]);
           }
+        solids = std::make_unique<Element::SolidBodies>(*this);
         families.clear();
         families.push_back(
           std::make_unique<RigidBody::RigidBodies>(*this, fe, velocity, rigid_dof, body_inactive));

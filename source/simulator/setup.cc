@@ -172,8 +172,7 @@ namespace anvil
   {
     make_grid();
     setup_system();
-    setup_element_groups();
-    for (auto &family : families)
+    for (auto *family : contributors())
       family->setup();
     assemble_lumped_mass();
     setup_boundary_conditions();
@@ -185,7 +184,7 @@ namespace anvil
 
   std::vector<ForceContributor *> Simulator::contributors() const
   {
-    std::vector<ForceContributor *> list;
+    std::vector<ForceContributor *> list{solids.get()};
     for (const auto &family : families)
       list.push_back(family.get());
     list.push_back(contact.get());
@@ -205,117 +204,14 @@ namespace anvil
   }
 
 
-  // @sect3{Element groups}
-  //
-  // One group per body with its locally owned and ghost cells, in the
-  // order of their coarse-cell index (the same on every process). A node
-  // is addressed by the local index of its x dof in the nodal vectors; y
-  // and z follow.
-  //
-  // Why ghost cells: every process computes the forces of all elements
-  // around the nodes it owns and adds them in global element order. The
-  // nodal forces, and so the whole trajectory, are then bitwise the same on
-  // any number of processes, and no force exchange (compress) is needed;
-  // the price is the duplicated work on one layer of ghost cells.
-  void Simulator::setup_element_groups()
-  {
-    // A body's elements in its 'Full integration region' form a second
-    // group of fully integrated elements: group_body maps a group to its
-    // body, body_group a body to its groups (one point, full).
-    element_groups.clear();
-    group_body.clear();
-    body_group.assign(bodies.size(), {{-1, -1}});
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        const auto &body = bodies[b];
-        for (unsigned int slot = 0; slot < (body.has_full_integration_region() ? 2 : 1); ++slot)
-          {
-            const auto integration = (slot == 0 ? body.integration : Element::Integration::full);
-            body_group[b][slot] = element_groups.size();
-            group_body.push_back(b);
-            element_groups.emplace_back(*body.material,
-                                        body.formulation,
-                                        integration,
-                                        body.hourglass,
-                                        body.hourglass_coefficient);
-            if (!body.is_rigid())
-              element_groups.back().set_bulk_viscosity(body.bulk_linear, body.bulk_quadratic);
-          }
-      }
-    const auto &partitioner = position.get_partitioner();
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          std::array<unsigned int, 8> node;
-          double                      X[8][3];
-          for (unsigned int v = 0; v < 8; ++v)
-            {
-              node[v] = partitioner->global_to_local(cell->vertex_dof_index(v, 0));
-              for (unsigned int c = 1; c < 3; ++c)
-                AssertThrow(partitioner->global_to_local(
-                              cell->vertex_dof_index(v, c)) == node[v] + c,
-                            ExcMessage("nodal dofs are not contiguous"));
-              for (unsigned int c = 0; c < 3; ++c)
-                X[v][c] = cell->vertex(v)[c];
-            }
-          const Body        &body = bodies[cell->material_id()];
-          const unsigned int slot =
-            (body.integration_at(cell->center()) == body.integration ? 0 : 1);
-          element_groups[body_group[cell->material_id()][slot]].add_element(
-            node,
-            X,
-            cell->active_cell_index(),
-            cell->is_locally_owned(),
-            cell->id().get_coarse_cell_id(),
-            body.strength_factor(cell->center()));
-        }
-    for (auto &g : element_groups)
-      g.finalize();
-  }
-
-
   // @sect3{Lumped mass}
   //
-  // Row-sum lumping of the consistent mass M = int rho_0 N^T N dV_0 (seed
-  // Eq. (35)): M_II = int rho_0 N_I dV_0. Like the forces, owned and ghost
-  // cells are summed in global order on every process, so the masses are
-  // bitwise the same for any partition.
+  // Each family adds its own (the solid bodies' elements first, then the
+  // perfectly bonded bars); every node ends with a positive mass.
   void Simulator::assemble_lumped_mass()
   {
-    mass                  = 0;
-    const IndexSet &owned = dof_handler.locally_owned_dofs();
-    // Beside the row sums, the eighths of the elements' masses around each
-    // node: their ratio lowers the stable step of elements with a light
-    // node (ElementGroup::set_nodal_mass_ratio()).
-    VectorType eighths(mass);
-    eighths = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          double X[8][3], m[8];
-          for (unsigned int v = 0; v < 8; ++v)
-            for (unsigned int d = 0; d < 3; ++d)
-              X[v][d] = cell->vertex(v)[d];
-          Element::lumped_mass(X, bodies[cell->material_id()].material->density(), m);
-          const double eighth = (m[0] + m[1] + m[2] + m[3] + m[4] + m[5] + m[6] + m[7]) / 8.;
-          for (unsigned int v = 0; v < 8; ++v)
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                const auto dof = cell->vertex_dof_index(v, d);
-                if (owned.is_element(dof))
-                  {
-                    mass(dof) += m[v];
-                    eighths(dof) += eighth;
-                  }
-              }
-        }
-    for (unsigned int i = 0; i < eighths.locally_owned_size(); ++i)
-      eighths.local_element(i) =
-        eighths.local_element(i) > 0 ? std::min(1., mass.local_element(i) / eighths.local_element(i)) : 1.;
-    eighths.update_ghost_values();
-    for (auto &g : element_groups)
-      g.set_nodal_mass_ratio(eighths.begin());
-    for (const auto &family : families)
+    mass = 0;
+    for (auto *family : contributors())
       family->add_mass(mass);
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
       AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
@@ -416,12 +312,12 @@ namespace anvil
           {
             const auto    local = position.get_partitioner()->global_to_local(probe.x_dof);
             unsigned long best_id = static_cast<unsigned long>(-1);
-            for (unsigned int g = 0; g < element_groups.size(); ++g)
-              for (unsigned int e = 0; e < element_groups[g].n_elements(); ++e)
-                for (const unsigned int n : element_groups[g].element_nodes(e))
-                  if (n == local && element_groups[g].element_global_id(e) < best_id)
+            for (unsigned int g = 0; g < solids->groups().size(); ++g)
+              for (unsigned int e = 0; e < solids->groups()[g].n_elements(); ++e)
+                for (const unsigned int n : solids->groups()[g].element_nodes(e))
+                  if (n == local && solids->groups()[g].element_global_id(e) < best_id)
                     {
-                      best_id       = element_groups[g].element_global_id(e);
+                      best_id       = solids->groups()[g].element_global_id(e);
                       probe.group   = g;
                       probe.element = e;
                     }
@@ -505,29 +401,8 @@ namespace anvil
   // tests: a physics the scene does not contain is not computed.
   std::string Simulator::step_contents() const
   {
-    std::set<unsigned int> deformable, bulk, rate, erosion;
-    for (unsigned int g = 0; g < element_groups.size(); ++g)
-      {
-        const auto &group = element_groups[g];
-        if (group.get_material().is_rigid())
-          continue;
-        deformable.insert(group_body[g]);
-        if (group.bulk_viscosity())
-          bulk.insert(group_body[g]);
-        if (group.get_material().rate_dependent())
-          rate.insert(group_body[g]);
-        if (group.get_material().erodes())
-          erosion.insert(group_body[g]);
-      }
-    auto count = [](const std::size_t n, const std::string &what, const std::string &of) {
-      return n == 0 ? "no " + what :
-                      what + " in " + std::to_string(n) + " " +
-                        (n == 1 ? of : of == "body" ? std::string("bodies") : of + "s");
-    };
     std::ostringstream s;
-    s << "elements of " << deformable.size() << " bod" << (deformable.size() == 1 ? "y" : "ies") << "; "
-      << count(bulk.size(), "bulk viscosity", "body") << "; " << count(rate.size(), "rate effects", "body")
-      << "; " << count(erosion.size(), "erosion", "body") << "; " << contact->describe();
+    s << solids->describe() << "; " << contact->describe();
     for (const auto &family : families)
       s << "; " << family->describe();
     s << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "

@@ -77,7 +77,7 @@ namespace anvil
 
   const std::vector<Element::ElementGroup> &SimulatorAccess::get_element_groups() const
   {
-    return simulator.element_groups;
+    return simulator.solids->groups();
   }
 
   const VectorType &SimulatorAccess::get_reference_position() const
@@ -204,7 +204,7 @@ namespace anvil
 
   const std::vector<unsigned int> &SimulatorAccess::get_group_body() const
   {
-    return simulator.group_body;
+    return simulator.solids->group_body();
   }
 
   const dealii::FESystem<3> &SimulatorAccess::get_fe() const
@@ -214,12 +214,12 @@ namespace anvil
 
   unsigned long SimulatorAccess::n_eroded_elements() const
   {
-    return simulator.n_eroded;
+    return simulator.solids->n_eroded();
   }
 
   std::vector<std::string> &SimulatorAccess::get_erosion_rows() const
   {
-    return simulator.erosion_rows;
+    return simulator.solids->erosion_rows();
   }
 
   std::vector<ForceContributor *> SimulatorAccess::get_families() const

@@ -43,47 +43,16 @@ namespace anvil
 
   // @sect3{Internal forces}
   //
-  // The solid bodies are the Simulator's own loop: every element group
-  // (source/element/), then the families with forces, then erosion's
-  // bookkeeping (the eroded elements' faces leave the contact pairs; the
-  // rows of erosion.csv go to rank 0).
+  // The solid bodies' elements (Element::SolidBodies), then the families
+  // with forces of their own (the bars: replicated on every process, their
+  // energy counted once), each timed in its own section, then the elements'
+  // energy increments (booked after the families' work, as they always
+  // were: the same sums, bit for bit) and erosion: the eroded elements'
+  // faces leave every family that holds them (the contact pairs).
   double Simulator::compute_internal_forces(const double dt_previous)
   {
     TimerOutput::Scope t(*timer, "element forces");
-    double             dt_crit = 1e300;
-    double             d_int = 0, d_hg = 0, d_visc = 0;
-    const double      *x     = position.begin();
-    const double      *v     = velocity.begin();
-    double            *f     = force.begin();
-    double                     d_eroded = 0;
-    std::vector<unsigned long> eroded;
-    std::vector<double>        eroded_info;
-    for (unsigned int g = 0; g < element_groups.size(); ++g)
-      {
-        auto &group = element_groups[g];
-        // A rigid body's elements carry no force and do not limit the step.
-        if (group.get_material().is_rigid())
-          continue;
-        const auto r = group.compute_internal_forces(x, v, dt_previous, f);
-        dt_crit          = std::min(dt_crit, r.critical_time_step);
-        d_int += r.internal_energy_increment;
-        d_hg += r.hourglass_energy_increment;
-        d_visc += r.viscous_energy_increment;
-        d_eroded += r.eroded_energy_increment;
-        if (r.inverted_element >= 0 && inverted_cell < 0)
-          inverted_cell = group.element_cell_index(r.inverted_element);
-        eroded.insert(eroded.end(), r.eroded_elements.begin(), r.eroded_elements.end());
-        if (!r.eroded_elements.empty())
-          record_erosion(g, r.eroded_elements, eroded_info);
-      }
-    std::array<double, 5> increments{{d_int, d_hg, d_eroded, double(eroded.size()), d_visc}};
-    Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
-                        mpi_communicator,
-                        ArrayView<double>(increments.data(), increments.size()));
-    // The families with forces of their own (the bars: replicated on every
-    // process, their energy counted once), each timed in its own section;
-    // their work is booked before the elements' increments, as it always
-    // was (the same sums, bit for bit).
+    double dt_crit = solids->add_forces(dt_previous);
     t.stop();
     for (auto &family : families)
       if (!family->empty() && family->has_forces())
@@ -91,75 +60,11 @@ namespace anvil
           TimerOutput::Scope section(*timer, family->name());
           dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
         }
-    energies.internal += increments[0];
-    energies.hourglass += increments[1];
-    energies.eroded += increments[2];
-    energies.viscous += increments[4];
-    // Erosion is rare: only then do the ranks exchange element ids, so that
-    // every replicated contact pair drops the eroded elements' faces.
-    if (increments[3] > 0)
-      {
-        std::vector<unsigned long> all;
-        for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, eroded))
-          all.insert(all.end(), part.begin(), part.end());
-        std::sort(all.begin(), all.end());
-        all.erase(std::unique(all.begin(), all.end()), all.end());
-        contact->deactivate_elements(all);
-        for (const auto &part : Utilities::MPI::gather(mpi_communicator, eroded_info, 0))
-          for (std::size_t i = 0; i + 8 <= part.size(); i += 8)
-            {
-              std::ostringstream row;
-              row << std::setprecision(10) << time << ',' << (unsigned long)part[i] << ','
-                  << bodies[(unsigned int)part[i + 1]].name << ',' << part[i + 2] << ','
-                  << part[i + 3] << ',' << part[i + 4] << ',' << part[i + 5] << ','
-                  << part[i + 6] << ',' << part[i + 7];
-              erosion_rows.push_back(row.str());
-              ++n_eroded;
-            }
-      }
+    const std::vector<unsigned long> eroded = solids->finish_forces();
+    if (!eroded.empty())
+      contact->deactivate_elements(eroded);
     return Utilities::MPI::min(dt_crit, mpi_communicator);
   }
-
-
-  // What erosion.csv tells of each owned element eroded this step: global
-  // id, body, centre (current), effective plastic strain (mean over the
-  // points, when the model has one) and the energy it held.
-  void Simulator::record_erosion(const unsigned int                group_index,
-                                 const std::vector<unsigned long> &ids,
-                                 std::vector<double>              &info) const
-  {
-    std::vector<unsigned long> sorted(ids);
-    std::sort(sorted.begin(), sorted.end());
-    const auto  &group = element_groups[group_index];
-    const auto   names = group.get_material().history_names();
-    const auto   it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
-    const double *x    = position.begin();
-    for (unsigned int e = 0; e < group.n_elements(); ++e)
-      if (group.element_is_owned(e) &&
-          std::binary_search(sorted.begin(), sorted.end(), group.element_global_id(e)))
-        {
-          double c[3] = {0, 0, 0};
-          for (const unsigned int n : group.element_nodes(e))
-            for (unsigned int d = 0; d < 3; ++d)
-              c[d] += 0.125 * x[n + d];
-          double eps_p = 0;
-          if (it != names.end())
-            for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-              eps_p += group.history_variables(e, q)[it - names.begin()] /
-                       group.n_quadrature_points();
-          info.insert(info.end(),
-                      {double(group.element_global_id(e)),
-                       double(group_body[group_index]),
-                       c[0],
-                       c[1],
-                       c[2],
-                       eps_p,
-                       group.element_internal_energy(e) + group.element_hourglass_energy(e),
-                       group.element_reference_volume(e)});
-        }
-  }
-
-
 
 
   // @sect3{Central difference update}
@@ -348,7 +253,7 @@ namespace anvil
                                                         last_checkpoint_wall)
                               .count() >= checkpoint_wall_interval &&
                           Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    std::array<double, 4> flags{{double(inverted_cell),
+    std::array<double, 4> flags{{double(solids->inverted_cell()),
                                  output_failure.empty() ? 0. : 1.,
                                  wall_due ? 1. : 0.,
                                  stop_signal_received() ? 1. : 0.}};
@@ -493,7 +398,7 @@ namespace anvil
     // Where: the element of the fastest node (or the inverted one).
     double vmax = -1;
     long   cell = -1, element_id = -1;
-    for (const auto &group : element_groups)
+    for (const auto &group : solids->groups())
       for (unsigned int e = 0; e < group.n_elements(); ++e)
         {
           if (inverted >= 0 && long(group.element_cell_index(e)) != inverted)
@@ -914,8 +819,8 @@ namespace anvil
       }
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance_error;
-    if (n_eroded > 0)
-      pcout << ", " << n_eroded << " elements eroded (" << output_directory << "/erosion.csv)";
+    if (solids->n_eroded() > 0)
+      pcout << ", " << solids->n_eroded() << " elements eroded (" << output_directory << "/erosion.csv)";
     if (summary.contact_limited_steps > 0)
       pcout << "\n  contact penalty springs set the size of " << summary.contact_limited_steps
             << " steps; the elements alone would have needed "

@@ -29,7 +29,7 @@ namespace anvil::Rebar
         scene-wide id, so every partition embeds it the same way. */
     void   setup() override;
     /** Perfectly bonded bars: rho A l_trib to the host nodes through N_I. */
-    void   add_mass(VectorType &mass) const override;
+    void   add_mass(VectorType &mass) override;
     double add_forces(double dt) override;
     void   update_velocity(double dt_previous, double dt, OwnMotion &motion) override;
     void   update_position(double dt) override;

@@ -48,7 +48,7 @@ namespace anvil
     {}
 
     /** Add the family's lumped mass to the owned entries of @p mass. */
-    virtual void add_mass(VectorType &mass) const
+    virtual void add_mass(VectorType &mass)
     {
       (void)mass;
     }

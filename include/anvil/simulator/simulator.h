@@ -8,6 +8,7 @@
 #include <anvil/boundary_conditions/boundary_condition.h>
 #include <anvil/contact/contact_pairs.h>
 #include <anvil/element/element_group.h>
+#include <anvil/element/solid_bodies.h>
 #include <anvil/mesh/body.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/rebar/rebar.h>
@@ -214,7 +215,6 @@ namespace anvil
     void setup();
     void make_grid();
     void setup_system();
-    void setup_element_groups();
     void assemble_lumped_mass();
     void setup_boundary_conditions();
     void setup_probes();
@@ -283,9 +283,6 @@ namespace anvil
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     void   apply_contact(double dt_previous);
-    void   record_erosion(unsigned int                      group_index,
-                          const std::vector<unsigned long> &ids,
-                          std::vector<double>              &info) const;
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
     void   check_health(double time, unsigned int step, double dt_next);
@@ -381,12 +378,8 @@ namespace anvil
     dealii::parallel::distributed::Triangulation<3> triangulation;
     dealii::FESystem<3>                             fe;
     dealii::DoFHandler<3>                           dof_handler;
-    std::vector<Element::ElementGroup>              element_groups;
-    /** Body of each element group, and the groups of each body (one
-        point or the body's own integration; full integration region; -1:
-        none). */
-    std::vector<unsigned int>                       group_body;
-    std::vector<std::array<int, 2>>                 body_group;
+    /** The solid bodies: the element groups (a family, evaluated first). */
+    std::unique_ptr<Element::SolidBodies>           solids;
 
     // Nodal state: reference and current positions, half-step velocity,
     // force and lumped mass, all with ghost entries.
@@ -423,9 +416,10 @@ namespace anvil
     /** The contact pairs: a family of their own, evaluated after the
         element forces and erosion (apply_contact). */
     std::unique_ptr<Contact::ContactPairs> contact;
-    /** Every family for the hooks that are not the forces (setup, energy
-        and momentum terms, histories, fields, summary, checkpoint): the
-        families in their order, then the contact pairs. */
+    /** Every family for the hooks that are not the forces (setup, mass,
+        energy and momentum terms, histories, fields, summary, checkpoint):
+        the solid bodies, the families in their order, then the contact
+        pairs. */
     std::vector<ForceContributor *> contributors() const;
 
     // Energy bookkeeping
@@ -444,7 +438,6 @@ namespace anvil
     double       current_dt     = 0;
     unsigned int step_number    = 0;
     double       time           = 0;
-    long int     inverted_cell  = -1;
     /** Consecutive steps with the energy above the tolerance, and with the
         internal energy below minus the tolerance. */
     unsigned int growth_steps   = 0;
@@ -452,10 +445,6 @@ namespace anvil
     /** The first step's stable step (for 'Minimum time step ratio'). */
     double       first_dt       = 0;
 
-    /** Eroded elements so far (scene-wide), and the rows of erosion.csv
-        not yet written. */
-    unsigned long            n_eroded = 0;
-    std::vector<std::string> erosion_rows;
 
     /** What the run writes besides the families' histories, in their
         order (source/postprocess/, Postprocess::Interface). */
