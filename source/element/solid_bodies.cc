@@ -133,6 +133,12 @@ namespace anvil::Element
   }
 
 
+  // @sect3{Forces}
+  //
+  // Every deformable group in turn (a rigid body's elements carry no force
+  // and do not limit the step): internal, hourglass and bulk-viscosity
+  // forces into F, the group's stable step, its energy increments and the
+  // elements it eroded.
   double SolidBodies::add_forces(const double dt_previous)
   {
     const VectorType &position = get_position(), &velocity = get_velocity();
