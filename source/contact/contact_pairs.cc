@@ -43,6 +43,7 @@ namespace anvil::Contact
     velocities.assign(n_pairs, {});
     forces.assign(n_pairs, {});
     contact_results.assign(n_pairs, {});
+    analytic_body.assign(n_pairs, {{-1, -1}});
     contact_frequency_squared = 0;
     auto body_index = [&](const std::string &name) {
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -103,7 +104,13 @@ namespace anvil::Contact
           }
         pairs[p]->setup(segments[0], segments[1]);
         for (unsigned int s = 0; s < 2; ++s)
-          pairs[p]->set_rigid(s, bodies[body[s]].is_rigid());
+          {
+            pairs[p]->set_rigid(s, bodies[body[s]].is_rigid());
+            analytic_body[p][s] = bodies[body[s]].is_rigid() &&
+                                      bodies[body[s]].rigid.shape.type != RigidBody::Shape::Type::mesh ?
+                                    int(body[s]) :
+                                    -1;
+          }
         if (bodies[body[0]].is_rigid() && bodies[body[1]].is_rigid())
           throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
                            "': both bodies are rigid");
@@ -137,7 +144,6 @@ namespace anvil::Contact
   // evaluates the pair, and each keeps the forces on the nodes it owns.
   double ContactPairs::add_forces(const double dt_previous)
   {
-    const auto       &bodies           = get_bodies();
     const VectorType &position         = get_position();
     const VectorType &velocity         = get_velocity();
     VectorType       &force            = get_force();
@@ -174,11 +180,8 @@ namespace anvil::Contact
         if (!vs.empty())
           Utilities::MPI::sum(vs, mpi_communicator, vs);
         place_analytic_shapes(p);
-        int shape_body = -1;
-        for (unsigned int b = 0; b < bodies.size(); ++b)
-          if ((bodies[b].name == pairs[p]->first_body && pairs[p]->has_analytic(0)) ||
-              (bodies[b].name == pairs[p]->second_body && pairs[p]->has_analytic(1)))
-            shape_body = b;
+        // (At most one surface of a pair is a rigid body's.)
+        const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
         contact_results[p] = pairs[p]->compute_forces(xs, vs, dt_previous, fs);
         // The springs in contact, or within reach by the next step, bound
         // the next step (replicated: the same on every rank).
@@ -203,23 +206,19 @@ namespace anvil::Contact
 
   void ContactPairs::place_analytic_shapes(const unsigned int p)
   {
-    const auto &bodies = get_bodies();
-    const std::string names[2] = {pairs[p]->first_body, pairs[p]->second_body};
     for (unsigned int s = 0; s < 2; ++s)
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b].name == names[s] && bodies[b].is_rigid() &&
-            bodies[b].rigid.shape.type != RigidBody::Shape::Type::mesh)
-          {
-            const auto              &m = bodies[b].rigid;
-            Contact::AnalyticSurface a;
-            a.shape            = &m.shape;
-            a.centre           = m.centre;
-            a.reference_centre = m.reference_centre;
-            a.rotation         = m.rotation;
-            a.velocity         = m.velocity;
-            a.angular_velocity = m.angular_velocity;
-            pairs[p]->set_analytic(s, a);
-          }
+      if (analytic_body[p][s] >= 0)
+        {
+          const auto              &m = get_bodies()[analytic_body[p][s]].rigid;
+          Contact::AnalyticSurface a;
+          a.shape            = &m.shape;
+          a.centre           = m.centre;
+          a.reference_centre = m.reference_centre;
+          a.rotation         = m.rotation;
+          a.velocity         = m.velocity;
+          a.angular_velocity = m.angular_velocity;
+          pairs[p]->set_analytic(s, a);
+        }
   }
 
 

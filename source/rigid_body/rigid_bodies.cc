@@ -8,6 +8,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <array>
 #include <iomanip>
 
 namespace anvil::RigidBody
@@ -177,7 +178,7 @@ namespace anvil::RigidBody
       else if (bodies[b].is_rigid())
         {
           auto               &motion = bodies[b].rigid;
-          std::vector<double> ft(6, 0.);
+          std::array<double, 6> ft{};
           for (const auto &[i, X] : nodes[b])
             {
               Tensor<1, 3> fi, r;
@@ -193,7 +194,8 @@ namespace anvil::RigidBody
                   ft[3 + d] += t[d];
                 }
             }
-          Utilities::MPI::sum(ft, mpi_communicator, ft);
+          Utilities::MPI::sum(ArrayView<const double>(ft.data(), ft.size()), mpi_communicator,
+                              ArrayView<double>(ft.data(), ft.size()));
           Tensor<1, 3> F({ft[0], ft[1], ft[2]}), T({ft[3], ft[4], ft[5]});
           F += shape_force[b];
           T += shape_torque[b];

@@ -836,6 +836,10 @@ namespace anvil
         families.push_back(std::make_unique<Rebar::Reinforcement>(*this, std::move(rebar_layouts)));
         contact = std::make_unique<Contact::ContactPairs>(*this, std::move(pairs), std::move(pair_inactive),
                                                           *rigid_bodies);
+        all_families = {solids.get()};
+        for (const auto &family : families)
+          all_families.push_back(family.get());
+        all_families.push_back(contact.get());
         probes.resize(probe_names.size());
         for (unsigned int i = 0; i < probe_names.size(); ++i)
           {

@@ -182,16 +182,6 @@ namespace anvil
   }
 
 
-  std::vector<ForceContributor *> Simulator::contributors() const
-  {
-    std::vector<ForceContributor *> list{solids.get()};
-    for (const auto &family : families)
-      list.push_back(family.get());
-    list.push_back(contact.get());
-    return list;
-  }
-
-
   void Simulator::check()
   {
     setup();

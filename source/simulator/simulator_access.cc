@@ -222,7 +222,7 @@ namespace anvil
     return simulator.solids->erosion_rows();
   }
 
-  std::vector<ForceContributor *> SimulatorAccess::get_families() const
+  const std::vector<ForceContributor *> &SimulatorAccess::get_families() const
   {
     return simulator.contributors();
   }

@@ -12,6 +12,7 @@
 #include <anvil/rigid_body/rigid_bodies.h>
 #include <anvil/simulator/force_contributor.h>
 
+#include <array>
 #include <memory>
 
 namespace anvil::Contact
@@ -87,6 +88,9 @@ namespace anvil::Contact
     std::vector<std::vector<long>>   local_index;
     std::vector<std::vector<double>> positions, velocities, forces;
     std::vector<ContactResult>       contact_results;
+    /** Per pair and surface: the body whose analytic shape the surface
+        is (a rigid body's sphere, plane, ...), -1: the body's mesh faces. */
+    std::vector<std::array<int, 2>>  analytic_body;
     double                           contact_frequency_squared = 0;
   };
 } // namespace anvil::Contact

@@ -420,7 +420,11 @@ namespace anvil
         energy and momentum terms, histories, fields, summary, checkpoint):
         the solid bodies, the families in their order, then the contact
         pairs. */
-    std::vector<ForceContributor *> contributors() const;
+    const std::vector<ForceContributor *> &contributors() const
+    {
+      return all_families;
+    }
+    std::vector<ForceContributor *> all_families;
 
     // Energy bookkeeping
     Energies     energies;

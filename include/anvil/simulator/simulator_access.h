@@ -108,7 +108,7 @@ namespace anvil
     unsigned long                     n_eroded_elements() const;
     std::vector<std::string>         &get_erosion_rows() const;
     /** The families (rigid bodies, reinforcement, contact pairs). */
-    std::vector<ForceContributor *>   get_families() const;
+    const std::vector<ForceContributor *> &get_families() const;
     bool                              has_contact() const;
     bool                              plots_requested() const;
 
