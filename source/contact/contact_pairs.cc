@@ -39,6 +39,9 @@ namespace anvil::Contact
     const std::string &scene_file       = get_scene_file();
     const unsigned int n_pairs          = pairs.size();
     local_index.assign(n_pairs, {});
+    relevant_index.assign(n_pairs, {});
+    owned_index.assign(n_pairs, {});
+    distributed.assign(n_pairs, 0);
     positions.assign(n_pairs, {});
     velocities.assign(n_pairs, {});
     forces.assign(n_pairs, {});
@@ -121,6 +124,22 @@ namespace anvil::Contact
             dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
               long(position.get_partitioner()->global_to_local(dofs[i])) :
               -1;
+        // A pair that evaluates each rank's share reads the nodes of the
+        // rank's own and ghost cells, and is not gathered.
+        place_analytic_shapes(p);
+        distributed[p] = pairs[p]->distribute(mpi_communicator, dof_handler.locally_owned_dofs());
+        relevant_index[p].clear();
+        owned_index[p].clear();
+        if (distributed[p])
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            {
+              if (position.get_partitioner()->in_local_range(dofs[i]) ||
+                  position.get_partitioner()->is_ghost_entry(dofs[i]))
+                relevant_index[p].emplace_back(
+                  i, position.get_partitioner()->global_to_local(dofs[i]));
+              if (local_index[p][i] >= 0)
+                owned_index[p].emplace_back(i, local_index[p][i]);
+            }
         // The pair's node masses (normal damping, the springs' frequency in
         // the stable step, which each evaluation updates).
         std::vector<double> m(dofs.size(), 0.);
@@ -141,7 +160,10 @@ namespace anvil::Contact
   // @sect3{Contact}
   //
   // Positions of each pair's nodes are gathered to every rank, every rank
-  // evaluates the pair, and each keeps the forces on the nodes it owns.
+  // evaluates the pair, and each keeps the forces on the nodes it owns. A
+  // distributed pair (against an analytic shape) reads the positions of the
+  // rank's own and ghost cells instead and sets the forces of its own nodes;
+  // it returns the whole pair's figures on every rank all the same.
   double ContactPairs::add_forces(const double dt_previous)
   {
     const VectorType &position         = get_position();
@@ -164,21 +186,39 @@ namespace anvil::Contact
         auto &xs = positions[p];
         auto &vs = velocities[p];
         auto &fs = forces[p];
-        std::fill(xs.begin(), xs.end(), 0.);
-        std::fill(vs.begin(), vs.end(), 0.);
-        std::fill(fs.begin(), fs.end(), 0.);
         const auto &index = local_index[p];
-        for (unsigned int i = 0; i < index.size(); ++i)
-          if (index[i] >= 0)
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                xs[3 * i + d] = position.local_element(index[i] + d);
-                if (!vs.empty())
-                  vs[3 * i + d] = velocity.local_element(index[i] + d);
-              }
-        Utilities::MPI::sum(xs, mpi_communicator, xs);
-        if (!vs.empty())
-          Utilities::MPI::sum(vs, mpi_communicator, vs);
+        if (distributed[p])
+          {
+            // Only the entries of the own and ghost nodes are ever set;
+            // the algorithm sets forces on own nodes only.
+            for (const auto &[i, local] : relevant_index[p])
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  xs[3 * i + d] = position.local_element(local + d);
+                  if (!vs.empty())
+                    vs[3 * i + d] = velocity.local_element(local + d);
+                }
+            for (const auto &[i, local] : owned_index[p])
+              for (unsigned int d = 0; d < 3; ++d)
+                fs[3 * i + d] = 0;
+          }
+        else
+          {
+            std::fill(xs.begin(), xs.end(), 0.);
+            std::fill(vs.begin(), vs.end(), 0.);
+            std::fill(fs.begin(), fs.end(), 0.);
+            for (unsigned int i = 0; i < index.size(); ++i)
+              if (index[i] >= 0)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    xs[3 * i + d] = position.local_element(index[i] + d);
+                    if (!vs.empty())
+                      vs[3 * i + d] = velocity.local_element(index[i] + d);
+                  }
+            Utilities::MPI::sum(xs, mpi_communicator, xs);
+            if (!vs.empty())
+              Utilities::MPI::sum(vs, mpi_communicator, vs);
+          }
         place_analytic_shapes(p);
         // (At most one surface of a pair is a rigid body's.)
         const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
@@ -192,12 +232,17 @@ namespace anvil::Contact
             rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
                                              contact_results[p].shape_torque);
           }
-        // Replicated evaluation: every rank has the same friction work.
+        // Every rank has the whole pair's friction work.
         energies.friction += contact_results[p].friction_work;
-        for (unsigned int i = 0; i < index.size(); ++i)
-          if (index[i] >= 0)
+        if (distributed[p])
+          for (const auto &[i, local] : owned_index[p])
             for (unsigned int d = 0; d < 3; ++d)
-              force.local_element(index[i] + d) += fs[3 * i + d];
+              force.local_element(local + d) += fs[3 * i + d];
+        else
+          for (unsigned int i = 0; i < index.size(); ++i)
+            if (index[i] >= 0)
+              for (unsigned int d = 0; d < 3; ++d)
+                force.local_element(index[i] + d) += fs[3 * i + d];
       }
     contact_frequency_squared = std::max(contact_frequency_squared, held_frequency_squared);
     return 1e300;

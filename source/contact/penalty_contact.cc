@@ -5,6 +5,9 @@
 #include <anvil/contact/penalty_contact.h>
 #include <anvil/utilities/input_error.h>
 
+#include <deal.II/base/partitioner.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 
@@ -98,7 +101,8 @@ namespace anvil::Contact
                          const std::vector<double> &ft_old,
                          std::vector<double>       &ft,
                          ContactResult             &result,
-                         Vec                       &friction)
+                         Vec                       &friction,
+                         double                    *work_terms = nullptr)
     {
       double fn = -l * k;
       if (pair.normal_damping > 0 && dt > 0 && node_mass > 0)
@@ -109,6 +113,8 @@ namespace anvil::Contact
           const double fd = std::max(-c * vn, -fn);
           fn += fd;
           result.friction_work -= fd * vn * dt;
+          if (work_terms)
+            work_terms[0] = fd * vn * dt;
         }
       friction = {0, 0, 0};
       if (dt > 0 && (pair.static_friction > 0 || pair.dynamic_friction > 0))
@@ -131,6 +137,8 @@ namespace anvil::Contact
           ft[3 * s + 1] = trial.y;
           ft[3 * s + 2] = trial.z;
           result.friction_work -= 0.5 * dot(f_old + trial, slip);
+          if (work_terms)
+            work_terms[1] = 0.5 * dot(f_old + trial, slip);
           friction = trial;
         }
       result.max_penetration = std::max(result.max_penetration, -l);
@@ -207,6 +215,23 @@ namespace anvil::Contact
     ar &tangential_force[0] &tangential_force[1] &previous_tangential_force;
     ar &partner[0] &partner[1] &spring_force[0] &spring_force[1] &spring_depth[0] &spring_depth[1]
       &spring_work &geometric_force[0] &geometric_force[1] &previous_position;
+    // The analytic pass's lists of the nodes with a spring or a gradient
+    // force; its old values are made anew from these at the next step.
+    ar &springs_now &gradients_now;
+    if (ar.is_loading())
+      {
+        springs_before.clear();
+        gradients_before.clear();
+        old_spring_force.clear();
+        old_spring_depth.clear();
+        old_geometric_force.clear();
+        near_nodes.clear();
+        if (has_analytic(0) || has_analytic(1))
+          {
+            previous_tangential_force.clear();
+            spring_load.assign(dofs.size(), 0.);
+          }
+      }
     // The trees are rebuilt from the positions they were built with (the
     // tree over surface s serves the pass with s as master), so the resumed
     // run rebuilds them at the same steps and finds the same candidates.
@@ -419,6 +444,27 @@ namespace anvil::Contact
   }
 
 
+  namespace
+  {
+    /** Area, area vector and pressure modulus of segment @p k of @p surf at
+        positions @p x. */
+    void update_segment(Surface &surf, const unsigned int k, const std::vector<double> &x)
+    {
+      auto pos = [&](const unsigned int i) -> Vec {
+        return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+      };
+      const auto  &n = surf.segments[k];
+      const Vec    a = quad_area_vector(pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3]));
+      const double A = norm(a);
+      surf.area[k]                        = A;
+      surf.segment_area_vector[3 * k]     = a.x;
+      surf.segment_area_vector[3 * k + 1] = a.y;
+      surf.segment_area_vector[3 * k + 2] = a.z;
+      surf.modulus[k]                     = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
+    }
+  } // namespace
+
+
   // @sect3{The current geometry}
   //
   // Seed Eq. (59) sets a segment's stiffness from its element, k = f K A^2
@@ -445,20 +491,8 @@ namespace anvil::Contact
                                        const std::vector<double>       &x,
                                        const std::vector<unsigned int> *near)
   {
-    Surface &surf = surface[s];
-    auto     pos  = [&](const unsigned int i) -> Vec {
-      return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
-    };
-    auto segment = [&](const unsigned int k) {
-      const auto  &n = surf.segments[k];
-      const Vec    a = quad_area_vector(pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3]));
-      const double A = norm(a);
-      surf.area[k]                        = A;
-      surf.segment_area_vector[3 * k]     = a.x;
-      surf.segment_area_vector[3 * k + 1] = a.y;
-      surf.segment_area_vector[3 * k + 2] = a.z;
-      surf.modulus[k]                     = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
-    };
+    Surface &surf    = surface[s];
+    auto     segment = [&](const unsigned int k) { update_segment(surf, k, x); };
     // The sums over the active segments around node i.
     auto node = [&](const unsigned int i) {
       double       av[3] = {0, 0, 0}, area = 0, modulus = 0, depth = 0;
@@ -541,7 +575,11 @@ namespace anvil::Contact
                                                std::vector<double>       &f)
   {
     ContactResult result;
-    spring_load.assign(dofs.size(), 0.);
+    // (The analytic pass clears its own nodes' spring loads.)
+    if (has_analytic(0) || has_analytic(1))
+      spring_load.resize(dofs.size(), 0.);
+    else
+      spring_load.assign(dofs.size(), 0.);
     // A rigid body's analytic shape: the other body's nodes against it
     // (which refreshes the geometry near the shape).
     if (has_analytic(0) || has_analytic(1))
@@ -570,10 +608,12 @@ namespace anvil::Contact
       }
     // The gradient forces' work needs this step's positions next step;
     // only springs against a rigid surface have them.
-    if (surface[0].rigid || surface[1].rigid || has_analytic(0) || has_analytic(1))
+    if ((surface[0].rigid || surface[1].rigid) && !has_analytic(0) && !has_analytic(1))
       previous_position = x;
-    result.energy            = spring_work;
-    result.frequency_squared = stable_frequency_squared();
+    result.energy = spring_work;
+    // (The analytic pass has set the whole pair's frequency.)
+    if (!has_analytic(0) && !has_analytic(1))
+      result.frequency_squared = stable_frequency_squared();
     return result;
   }
 
@@ -628,6 +668,46 @@ namespace anvil::Contact
   // leaves the wall. The term sums to zero over the nodes (kappa does not
   // change under translation), so momentum is kept; the normal n of the
   // rigid surface is held fixed in the derivative.
+  namespace
+  {
+    /**
+     * d kappa / d x_j of the four nodes of segment @p seg of @p surf (the
+     * segment's share of kappa_i, pressed along @p nn), from d a = (d x_2 -
+     * d x_0) x d2 / 2 + d1 x (d x_3 - d x_1) / 2. False if the segment
+     * adds nothing (edge-on, or of no area).
+     */
+    bool stiffness_gradient(const Surface             &surf,
+                            const unsigned int         seg,
+                            const Vec                 &nn,
+                            const double               penalty_factor,
+                            const std::vector<double> &x,
+                            Vec                        dk[4])
+    {
+      auto pos = [&](const unsigned int j) -> Vec {
+        return {x[3 * j], x[3 * j + 1], x[3 * j + 2]};
+      };
+      const Vec    a    = {surf.segment_area_vector[3 * seg], surf.segment_area_vector[3 * seg + 1],
+                           surf.segment_area_vector[3 * seg + 2]};
+      const double A    = norm(a);
+      const double proj = -dot(a, nn);
+      if (!(proj > 0) || !(A > 0))
+        return false;
+      const double c     = penalty_factor * surf.bulk[seg] / (4. * surf.volume[seg]);
+      const Vec    dk_da = c * ((proj / A) * a - A * nn);
+      const auto  &n     = surf.segments[seg];
+      const Vec    d1    = pos(n[2]) - pos(n[0]);
+      const Vec    d2    = pos(n[3]) - pos(n[1]);
+      const Vec    k2    = 0.5 * cross(d2, dk_da);
+      const Vec    k3    = 0.5 * cross(dk_da, d1);
+      dk[0]              = -1. * k2;
+      dk[1]              = -1. * k3;
+      dk[2]              = k2;
+      dk[3]              = k3;
+      return true;
+    }
+  } // namespace
+
+
   void PenaltyContact::add_stiffness_gradient(const unsigned int         slave_index,
                                               const unsigned int         i,
                                               const double               nx,
@@ -640,28 +720,12 @@ namespace anvil::Contact
     const Surface &surf = surface[slave_index];
     auto          &g    = geometric_force[slave_index];
     const Vec      nn   = {nx, ny, nz};
-    auto           pos  = [&](const unsigned int j) -> Vec {
-      return {x[3 * j], x[3 * j + 1], x[3 * j + 2]};
-    };
     for (const unsigned int seg : surf.node_segments[i])
       {
-        if (!surf.active[seg])
+        Vec dk[4];
+        if (!surf.active[seg] || !stiffness_gradient(surf, seg, nn, penalty_factor, x, dk))
           continue;
-        const Vec    a    = {surf.segment_area_vector[3 * seg], surf.segment_area_vector[3 * seg + 1],
-                             surf.segment_area_vector[3 * seg + 2]};
-        const double A    = norm(a);
-        const double proj = -dot(a, nn);
-        if (!(proj > 0) || !(A > 0))
-          continue;
-        const double c     = penalty_factor * surf.bulk[seg] / (4. * surf.volume[seg]);
-        const Vec    dk_da = c * ((proj / A) * a - A * nn);
-        const auto  &n     = surf.segments[seg];
-        const Vec    d1    = pos(n[2]) - pos(n[0]);
-        const Vec    d2    = pos(n[3]) - pos(n[1]);
-        // d kappa / d x_j from d a = (d x_2 - d x_0) x d2 / 2 + d1 x (d x_3 - d x_1) / 2.
-        const Vec    k2    = 0.5 * cross(d2, dk_da);
-        const Vec    k3    = 0.5 * cross(dk_da, d1);
-        const Vec    dk[4] = {-1. * k2, -1. * k3, k2, k3};
+        const auto &n = surf.segments[seg];
         for (unsigned int j = 0; j < 4; ++j)
           {
             const Vec F = (-0.5 * l * l) * dk[j];
@@ -683,6 +747,78 @@ namespace anvil::Contact
   // stiffness is the slave side's (Eq. (59) with the slave element's K, A,
   // V, over the node's tributary area). The reactions act on the rigid body
   // as a resultant force and a torque about its centre.
+  //
+  // Each rank evaluates the slave nodes it owns (distribute()), on the
+  // positions of its own and ghost cells; nothing of the pair is gathered.
+  // The result does not depend on the number of processes, bit for bit:
+  // - a node's force is summed by its owner in the order of one process
+  //   (by slave node, then by segment), from its own spring and the
+  //   gradient terms of the springs around it; a neighbour on another rank
+  //   sends its spring's state (in contact, l, n) through a ghost exchange
+  //   of the slave nodes next to the rank's own;
+  // - the pair's sums (the rigid body's force and torque, the work) are
+  //   replayed on every rank from all ranks' per-node terms, gathered (the
+  //   nodes in contact only) and put in that same order.
+  struct PenaltyContact::Exchange
+  {
+    /** Per slave node, 6 slots at 2 x-dof .. 2 x-dof + 5: in contact
+        (1; 2 with the gradient term), l, n. Owned: the rank's own range. */
+    dealii::LinearAlgebra::distributed::Vector<double> state;
+    /** The first owned dof. */
+    unsigned long first_dof = 0;
+    /** The slave nodes of other ranks next to this rank's own, and the
+        local index of their first slot. */
+    std::vector<unsigned int> ghosts, ghost_local;
+    /** The own nodes whose slots were written last step. */
+    std::vector<unsigned int> written;
+  };
+
+
+  bool PenaltyContact::distribute(MPI_Comm comm, const dealii::IndexSet &owned_dofs)
+  {
+    if (!has_analytic(0) && !has_analytic(1))
+      return false;
+    communicator = comm;
+    owned.assign(dofs.size(), 0);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      owned[i] = owned_dofs.is_element(dofs[i]);
+    contact_state.assign(dofs.size(), {});
+    target_mark.assign(dofs.size(), 0);
+    state_nodes.clear();
+    own_slave_nodes.clear();
+    exchange.reset();
+    if (dealii::Utilities::MPI::n_mpi_processes(comm) == 1)
+      return true;
+    AssertThrow(owned_dofs.is_contiguous(), dealii::ExcMessage("contact: the owned dofs are not contiguous"));
+    const Surface &slave = surface[has_analytic(0) ? 1 : 0];
+    std::vector<char> needed(dofs.size(), 0);
+    for (const auto &n : slave.segments)
+      if (owned[n[0]] || owned[n[1]] || owned[n[2]] || owned[n[3]])
+        for (const unsigned int i : n)
+          if (!owned[i])
+            needed[i] = 1;
+    exchange = std::make_shared<Exchange>();
+    const dealii::types::global_dof_index size = 2 * owned_dofs.size();
+    dealii::IndexSet                       own(size), ghost(size);
+    if (owned_dofs.n_elements() > 0)
+      {
+        exchange->first_dof = owned_dofs.nth_index_in_set(0);
+        own.add_range(2 * exchange->first_dof, 2 * (exchange->first_dof + owned_dofs.n_elements()));
+      }
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      if (needed[i])
+        {
+          ghost.add_range(2 * dofs[i], 2 * dofs[i] + 6);
+          exchange->ghosts.push_back(i);
+        }
+    auto partitioner = std::make_shared<dealii::Utilities::MPI::Partitioner>(own, ghost, comm);
+    exchange->state.reinit(partitioner);
+    for (const unsigned int i : exchange->ghosts)
+      exchange->ghost_local.push_back(partitioner->global_to_local(2 * dofs[i]));
+    return true;
+  }
+
+
   void PenaltyContact::analytic_pass(const unsigned int         slave_index,
                                      const std::vector<double> &x,
                                      const std::vector<double> &v,
@@ -690,32 +826,90 @@ namespace anvil::Contact
                                      std::vector<double>       &f,
                                      ContactResult             &result)
   {
-    const Surface          &slave          = surface[slave_index];
-    const AnalyticSurface  &a              = analytic[1 - slave_index];
-    const bool              slave_is_first = slave_index == 0;
-    std::vector<double>    &ft             = tangential_force[slave_index];
-    std::vector<double>    &ft_old         = previous_tangential_force;
-    if (needs_velocities())
-      start_pass(ft, ft_old);
-    start_pass(spring_force[slave_index], old_spring_force);
-    start_pass(spring_depth[slave_index], old_spring_depth);
-    start_pass(geometric_force[slave_index], old_geometric_force);
-    // The nodes within twice the thickest element's reference thickness of
-    // the shape; the geometry of those only.
+    Surface               &slave          = surface[slave_index];
+    const AnalyticSurface &a              = analytic[1 - slave_index];
+    const bool             slave_is_first = slave_index == 0;
+    std::vector<double>   &ft             = tangential_force[slave_index];
+    std::vector<double>   &ft_old         = previous_tangential_force;
+    std::vector<double>   &g              = geometric_force[slave_index];
+    const bool             all_mine       = owned.empty();
+    auto                   mine = [&](const unsigned int i) { return all_mine || owned[i] != 0; };
+    const bool             needs_v        = needs_velocities();
+    if (contact_state.size() != dofs.size())
+      {
+        contact_state.assign(dofs.size(), {});
+        target_mark.assign(dofs.size(), 0);
+      }
+    if (old_spring_force.size() != dofs.size())
+      {
+        old_spring_force.assign(dofs.size(), 0.);
+        old_spring_depth.assign(dofs.size(), 0.);
+        old_geometric_force.assign(3 * dofs.size(), 0.);
+        if (needs_v)
+          ft_old.assign(3 * dofs.size(), 0.);
+        springs_before.clear();
+        gradients_before.clear();
+      }
+    if (own_slave_nodes.empty())
+      for (const unsigned int s : slave.nodes)
+        if (mine(s))
+          own_slave_nodes.push_back(s);
+    // This step's springs start from zero, last step's become the old
+    // ones (the work, the friction's history): only the nodes that had a
+    // spring or a gradient force in the last two steps are touched (as
+    // start_pass() does for the whole surface).
+    {
+      // Entries (width per node) of the nodes @p before are cleared in
+      // @p old, those of @p now move from @p current to @p old.
+      auto shift = [](const std::vector<unsigned int> &before, const std::vector<unsigned int> &now,
+                      std::vector<double> &current, std::vector<double> &old, const unsigned int width) {
+        for (const unsigned int i : before)
+          for (unsigned int d = 0; d < width; ++d)
+            old[width * i + d] = 0;
+        for (const unsigned int i : now)
+          for (unsigned int d = 0; d < width; ++d)
+            {
+              old[width * i + d]     = current[width * i + d];
+              current[width * i + d] = 0;
+            }
+      };
+      shift(springs_before, springs_now, spring_force[slave_index], old_spring_force, 1);
+      shift(springs_before, springs_now, spring_depth[slave_index], old_spring_depth, 1);
+      if (needs_v)
+        shift(springs_before, springs_now, ft, ft_old, 3);
+      springs_before.swap(springs_now);
+      springs_now.clear();
+      shift(gradients_before, gradients_now, g, old_geometric_force, 3);
+      gradients_before.swap(gradients_now);
+      gradients_now.clear();
+    }
+    // The own nodes within twice the thickest element's reference thickness
+    // of the shape; the geometry of those only.
+    for (const unsigned int s : near_nodes)
+      spring_load[s] = 0;
     near_nodes.clear();
     near_gaps.clear();
-    for (const unsigned int s : slave.nodes)
-      {
-        const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
-        dealii::Tensor<1, 3>   normal;
-        const double l = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
-        if (l < 2. * slave.max_reference_depth)
-          {
-            near_nodes.push_back(s);
-            near_gaps.push_back({{l, normal[0], normal[1], normal[2]}});
-          }
-      }
+    for (const unsigned int s : own_slave_nodes)
+        {
+          const dealii::Point<3> xs(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
+          dealii::Tensor<1, 3>   normal;
+          const double l = a.shape->gap(xs, a.centre, a.rotation, a.reference_centre, normal);
+          if (l < 2. * slave.max_reference_depth)
+            {
+              near_nodes.push_back(s);
+              near_gaps.push_back({{l, normal[0], normal[1], normal[2]}});
+            }
+        }
     update_geometry(slave_index, x, &near_nodes);
+
+    // The springs of the own nodes. Per node in contact a record of its
+    // terms in the pair's sums: node, the two work terms, the force on the
+    // shape, its torque, normal and friction force (16 numbers).
+    for (const unsigned int s : state_nodes)
+      contact_state[s] = {};
+    state_nodes.clear();
+    records.assign(7, 0.);
+    ContactResult own;
     for (unsigned int c = 0; c < near_nodes.size(); ++c)
       {
         const unsigned int s = near_nodes[c];
@@ -742,28 +936,243 @@ namespace anvil::Contact
           }
         spring_force[slave_index][s] = -k * l;
         spring_depth[slave_index][s] = -l;
-        result.max_penetration_ratio = std::max(result.max_penetration_ratio, -l / depth);
+        own.max_penetration_ratio    = std::max(own.max_penetration_ratio, -l / depth);
         Vec       ff;
-        const Vec fs = interface_forces(*this, s, l, nn, k, vr, dt,
-                                        node_mass.empty() ? 0. : node_mass[s], ft_old, ft, result, ff);
-        const Vec total = fs + ff;
-        f[3 * s] += total.x;
-        f[3 * s + 1] += total.y;
-        f[3 * s + 2] += total.z;
-        if (!floored)
-          add_stiffness_gradient(slave_index, s, nn.x, nn.y, nn.z, l, x, f);
+        double    work[2] = {0, 0};
+        const Vec fs      = interface_forces(*this, s, l, nn, k, vr, dt, node_mass.empty() ? 0. : node_mass[s],
+                                        ft_old, ft, own, ff, work);
+        const Vec total   = fs + ff;
+        contact_state[s]  = {{floored ? 1. : 2., l, nn.x, nn.y, nn.z, total.x, total.y, total.z}};
+        state_nodes.push_back(s);
+        springs_now.push_back(s);
         const dealii::Tensor<1, 3> t({total.x, total.y, total.z});
-        result.shape_force -= t;
-        result.shape_torque -= cross_product_3d(xs - l * normal - a.centre, t);
-        const double sign = slave_is_first ? 1. : -1.;
-        result.force_on_first[0] += sign * fs.x;
-        result.force_on_first[1] += sign * fs.y;
-        result.force_on_first[2] += sign * fs.z;
-        result.friction_on_first[0] += sign * ff.x;
-        result.friction_on_first[1] += sign * ff.y;
-        result.friction_on_first[2] += sign * ff.z;
+        const dealii::Tensor<1, 3> torque = cross_product_3d(xs - l * normal - a.centre, t);
+        records.insert(records.end(), {double(s), work[0], work[1], t[0], t[1], t[2], torque[0], torque[1],
+                                       torque[2], fs.x, fs.y, fs.z, ff.x, ff.y, ff.z, 0.});
       }
-    book_spring_work(slave_index, x);
+    const unsigned int n_own_contact = state_nodes.size();
+
+    // The springs of the neighbours on other ranks (their state).
+    if (exchange)
+      {
+        auto &state = exchange->state;
+        state.zero_out_ghost_values();
+        for (const unsigned int s : exchange->written)
+          for (unsigned int k = 0; k < 6; ++k)
+            state.local_element(2 * (dofs[s] - exchange->first_dof) + k) = 0;
+        exchange->written.assign(state_nodes.begin(), state_nodes.end());
+        for (const unsigned int s : state_nodes)
+          for (unsigned int k = 0; k < 5; ++k)
+            state.local_element(2 * (dofs[s] - exchange->first_dof) + k) = contact_state[s][k];
+        state.update_ghost_values();
+        for (unsigned int q = 0; q < exchange->ghosts.size(); ++q)
+          if (state.local_element(exchange->ghost_local[q]) == 2.)
+            {
+              const unsigned int s = exchange->ghosts[q];
+              for (unsigned int k = 0; k < 5; ++k)
+                contact_state[s][k] = state.local_element(exchange->ghost_local[q] + k);
+              state_nodes.push_back(s);
+            }
+      }
+
+    // The forces of the own nodes: the own spring, and the gradient terms
+    // -1/2 l^2 grad kappa (add_stiffness_gradient()) of the springs around
+    // them, summed by slave node and segment as one process would.
+    targets.clear();
+    auto mark = [&](const unsigned int j) {
+      if (mine(j) && !target_mark[j])
+        {
+          target_mark[j] = 1;
+          targets.push_back(j);
+        }
+    };
+    for (unsigned int q = 0; q < state_nodes.size(); ++q)
+      {
+        const unsigned int s = state_nodes[q];
+        if (q < n_own_contact)
+          mark(s);
+        if (contact_state[s][0] != 2.)
+          continue;
+        for (const unsigned int seg : slave.node_segments[s])
+          if (slave.active[seg])
+            {
+              const auto &n = slave.segments[seg];
+              if (q >= n_own_contact) // a neighbour's segment: its geometry where it touches ours
+                {
+                  if (!(mine(n[0]) || mine(n[1]) || mine(n[2]) || mine(n[3])))
+                    continue;
+                  update_segment(slave, seg, x);
+                }
+              for (const unsigned int j : n)
+                mark(j);
+            }
+      }
+    gradients_now.assign(targets.begin(), targets.end());
+    for (const unsigned int j : targets)
+      {
+        target_mark[j] = 0;
+        candidates.assign(1, j);
+        for (const unsigned int seg : slave.node_segments[j])
+          for (const unsigned int i : slave.segments[seg])
+            candidates.push_back(i);
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        for (const unsigned int s : candidates)
+          {
+            const auto &st = contact_state[s];
+            if (s == j && st[0] != 0)
+              for (unsigned int d = 0; d < 3; ++d)
+                f[3 * j + d] += st[5 + d];
+            if (st[0] != 2.)
+              continue;
+            const Vec    nn = {st[2], st[3], st[4]};
+            const double l  = st[1];
+            for (const unsigned int seg : slave.node_segments[s])
+              {
+                if (!slave.active[seg])
+                  continue;
+                const auto        &n  = slave.segments[seg];
+                const unsigned int kk = std::find(n.begin(), n.end(), j) - n.begin();
+                Vec                dk[4];
+                if (kk == 4 || !stiffness_gradient(slave, seg, nn, penalty_factor, x, dk))
+                  continue;
+                const Vec F = (-0.5 * l * l) * dk[kk];
+                f[3 * j] += F.x;
+                f[3 * j + 1] += F.y;
+                f[3 * j + 2] += F.z;
+                g[3 * j] += F.x;
+                g[3 * j + 1] += F.y;
+                g[3 * j + 2] += F.z;
+              }
+          }
+      }
+
+    // The own terms of the springs' work (book_spring_work()), over the
+    // nodes with a spring or a gradient force in this step or the last
+    // (the replay puts them in order).
+    const std::size_t n_contact = (records.size() - 7) / 16;
+    {
+      const auto &f1 = spring_force[slave_index], &l1 = spring_depth[slave_index];
+      for (const auto *list : {&springs_now, &springs_before})
+        for (const unsigned int i : *list)
+          if (!target_mark[i] && (f1[i] != 0 || old_spring_force[i] != 0))
+            {
+              target_mark[i] = 1;
+              records.insert(records.end(), {double(i), 0.5 * (old_spring_force[i] + f1[i]) *
+                                                          (l1[i] - old_spring_depth[i])});
+            }
+      for (const auto *list : {&springs_now, &springs_before})
+        for (const unsigned int i : *list)
+          target_mark[i] = 0;
+    }
+    const std::size_t n_spring = (records.size() - 7 - 16 * n_contact) / 2;
+    if (previous_position.size() == x.size())
+      {
+        for (const auto *list : {&gradients_now, &gradients_before})
+          for (const unsigned int i : *list)
+            if (!target_mark[i])
+              {
+                target_mark[i] = 1;
+                for (unsigned int d = 0; d < 3; ++d)
+                  if (g[3 * i + d] != 0 || old_geometric_force[3 * i + d] != 0)
+                    records.insert(records.end(),
+                                   {double(3 * i + d), 0.5 * (old_geometric_force[3 * i + d] + g[3 * i + d]) *
+                                                         (x[3 * i + d] - previous_position[3 * i + d])});
+              }
+        for (const auto *list : {&gradients_now, &gradients_before})
+          for (const unsigned int i : *list)
+            target_mark[i] = 0;
+      }
+    const std::size_t n_geometric = (records.size() - 7 - 16 * n_contact - 2 * n_spring) / 2;
+    // The positions the gradient forces' work needs next step (the own
+    // nodes'; compute_forces() keeps all of them between two meshes).
+    if (previous_position.size() != x.size())
+      previous_position.assign(x.size(), 0.);
+    for (const unsigned int i : own_slave_nodes)
+      for (unsigned int d = 0; d < 3; ++d)
+        previous_position[3 * i + d] = x[3 * i + d];
+    double w2 = 0;
+    for (const unsigned int i : near_nodes)
+      if (spring_load[i] > 0 && i < node_mass.size() && node_mass[i] > 0)
+        w2 = std::max(w2, spring_load[i] / node_mass[i]);
+    records[0] = w2;
+    records[1] = own.max_penetration;
+    records[2] = own.max_penetration_ratio;
+    records[3] = own.n_active;
+    records[4] = n_contact;
+    records[5] = n_spring;
+    records[6] = n_geometric;
+    replay_records(slave_is_first, result);
+  }
+
+
+  // The pair's sums from every rank's records, in the order of one
+  // process: the maxima and counts, then per node in contact (by node) its
+  // work, force, torque; then the springs' work by node.
+  void PenaltyContact::replay_records(const bool slave_is_first, ContactResult &result)
+  {
+    const double *all   = records.data();
+    unsigned int  ranks = 1;
+    if (exchange)
+      {
+        ranks = dealii::Utilities::MPI::n_mpi_processes(communicator);
+        int n = records.size();
+        record_counts.resize(ranks);
+        record_offsets.resize(ranks);
+        MPI_Allgather(&n, 1, MPI_INT, record_counts.data(), 1, MPI_INT, communicator);
+        int total = 0;
+        for (unsigned int r = 0; r < ranks; ++r)
+          {
+            record_offsets[r] = total;
+            total += record_counts[r];
+          }
+        gathered.resize(total);
+        MPI_Allgatherv(records.data(), n, MPI_DOUBLE, gathered.data(), record_counts.data(),
+                       record_offsets.data(), MPI_DOUBLE, communicator);
+        all = gathered.data();
+      }
+    // Per rank, where its three kinds of record start.
+    order.clear();
+    double frequency_squared = 0;
+    for (unsigned int r = 0; r < ranks; ++r)
+      {
+        const double *h = all + (exchange ? record_offsets[r] : 0);
+        frequency_squared            = std::max(frequency_squared, h[0]);
+        result.max_penetration       = std::max(result.max_penetration, h[1]);
+        result.max_penetration_ratio = std::max(result.max_penetration_ratio, h[2]);
+        result.n_active += static_cast<unsigned int>(h[3]);
+        const std::size_t c = h[4], sp = h[5], ge = h[6];
+        const std::size_t base = (h - all) + 7;
+        for (std::size_t q = 0; q < c; ++q)
+          order.emplace_back(0, all[base + 16 * q], base + 16 * q);
+        for (std::size_t q = 0; q < sp; ++q)
+          order.emplace_back(1, all[base + 16 * c + 2 * q], base + 16 * c + 2 * q);
+        for (std::size_t q = 0; q < ge; ++q)
+          order.emplace_back(2, all[base + 16 * c + 2 * sp + 2 * q], base + 16 * c + 2 * sp + 2 * q);
+      }
+    std::sort(order.begin(), order.end());
+    const double sign = slave_is_first ? 1. : -1.;
+    for (const auto &[kind, key, at] : order)
+      {
+        const double *r = all + static_cast<std::size_t>(at);
+        if (kind == 0)
+          {
+            result.friction_work -= r[1];
+            result.friction_work -= r[2];
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                result.shape_force[d] -= r[3 + d];
+                result.shape_torque[d] -= r[6 + d];
+                result.force_on_first[d] += sign * r[9 + d];
+                result.friction_on_first[d] += sign * r[12 + d];
+              }
+          }
+        else if (kind == 1)
+          spring_work += r[1];
+        else
+          spring_work -= r[1];
+      }
+    result.frequency_squared = frequency_squared;
   }
 
 

@@ -86,6 +86,11 @@ namespace anvil::Contact
     /** Per pair: local index of each pair node's x dof on this rank if
         owned, else -1; and the gather/scatter buffers. */
     std::vector<std::vector<long>>   local_index;
+    /** Per pair: whether it evaluates each rank's share (distribute()),
+        and (pair node, local index) of its nodes on the rank's own and
+        ghost cells, and of its own nodes. */
+    std::vector<unsigned char>                                           distributed;
+    std::vector<std::vector<std::pair<unsigned int, unsigned int>>> relevant_index, owned_index;
     std::vector<std::vector<double>> positions, velocities, forces;
     std::vector<ContactResult>       contact_results;
     /** Per pair and surface: the body whose analytic shape the surface

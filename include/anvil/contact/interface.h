@@ -11,13 +11,17 @@
  * The family that holds the pairs (Contact::ContactPairs) gathers each
  * pair's node positions (and velocities if it asks for them), calls
  * compute_forces() and scatters the forces to the nodes each rank owns; an
- * algorithm sees only the pair's nodes, in the order of node_dofs().
+ * algorithm sees only the pair's nodes, in the order of node_dofs(). An
+ * algorithm that can evaluate each rank's share alone says so in
+ * distribute(); its pair is then not gathered.
  */
 #pragma once
 
 #include <anvil/rigid_body/rigid_body.h>
 #include <anvil/utilities/state_archive.h>
 
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -135,6 +139,22 @@ namespace anvil::Contact
     virtual void set_node_masses(const std::vector<double> &masses)
     {
       (void)masses;
+    }
+
+    /**
+     * Evaluate only this rank's share of the pair, if the algorithm can:
+     * the slave nodes whose dofs are in @p owned_dofs (the rank's own,
+     * a contiguous range). compute_forces() then receives the positions
+     * and velocities of the pair's nodes on the rank's own and ghost cells
+     * (the others are left zero), sets the forces of its own nodes, and
+     * returns the whole pair's figures, the same on every rank. Returns
+     * false (the default) if the algorithm evaluates the whole pair on
+     * gathered positions instead. Collective.
+     */
+    virtual bool distribute(MPI_Comm comm, const dealii::IndexSet &owned_dofs)
+    {
+      (void)comm, (void)owned_dofs;
+      return false;
     }
 
     /** Whether compute_forces() needs the nodes' velocities. */

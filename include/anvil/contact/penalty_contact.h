@@ -14,6 +14,7 @@
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <tuple>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,11 +69,13 @@ namespace anvil::Contact
 
   /**
    * A contact pair: each body's surface is master for the other's nodes
-   * (the symmetric penalty method). The pair's data are replicated on every
-   * rank: every rank evaluates the whole pair on the same gathered
-   * positions, in an order fixed by the reference coordinates, and keeps
-   * the forces of the nodes it owns. The result therefore does not depend
-   * on the number of processes.
+   * (the symmetric penalty method). The pair's surfaces are known on every
+   * rank, in an order fixed by the reference coordinates. Between two
+   * meshes every rank evaluates the whole pair on the same gathered
+   * positions and keeps the forces of the nodes it owns; against a rigid
+   * body's analytic shape each rank evaluates its own nodes only
+   * (distribute()). Either way the result does not depend on the number of
+   * processes.
    */
   class PenaltyContact : public Algorithm
   {
@@ -113,6 +116,10 @@ namespace anvil::Contact
                                  const std::vector<double> &v,
                                  double                     dt,
                                  std::vector<double>       &f) override;
+
+    /** Against an analytic shape: evaluate this rank's own slave nodes
+        only (see analytic_pass()). Mesh against mesh: false. */
+    bool distribute(MPI_Comm comm, const dealii::IndexSet &owned_dofs) override;
 
     /** Whether the pair needs velocities (friction or damping). */
     bool needs_velocities() const override
@@ -226,13 +233,39 @@ namespace anvil::Contact
     AnalyticSurface     analytic[2];
     std::shared_ptr<SearchTree> search[2];
 
-    /** The slave nodes of surface @p s against the analytic shape of the
-        other. */
+    /** The slave nodes of surface @p s (this rank's own) against the
+        analytic shape of the other. */
     void analytic_pass(unsigned int               s,
                        const std::vector<double> &x,
                        const std::vector<double> &v,
                        double                     dt,
                        std::vector<double>       &f,
                        ContactResult             &result);
+
+    /** The pair's sums of the analytic pass from every rank's records, in
+        the order of one process. */
+    void replay_records(bool slave_is_first, ContactResult &result);
+
+    /** This rank's share (distribute()): the communicator, which pair
+        nodes it owns (empty: all), and the ghost exchange of the springs'
+        state of the slave nodes next to its own (none on one process). */
+    MPI_Comm          communicator = MPI_COMM_SELF;
+    std::vector<char> owned;
+    struct Exchange;
+    std::shared_ptr<Exchange> exchange;
+    /** Work arrays of the analytic pass: per pair node its spring's state
+        (0 / 1 in contact / 2 with the gradient term, l, n, its force), the
+        nodes with a state, the own nodes whose force is summed, a node's
+        candidates, and the records of the pair's sums (own, gathered). */
+    std::vector<std::array<double, 8>>                     contact_state;
+    std::vector<unsigned int>                              state_nodes, targets, candidates;
+    std::vector<char>                                      target_mark;
+    std::vector<double>                                    records, gathered;
+    std::vector<int>                                       record_counts, record_offsets;
+    std::vector<std::tuple<int, double, std::size_t>>      order;
+    /** The own slave nodes; the own nodes with a spring (in contact) and
+        with a gradient force in this and in the last step (their entries
+        are the only ones a step changes). */
+    std::vector<unsigned int> own_slave_nodes, springs_now, springs_before, gradients_now, gradients_before;
   };
 } // namespace anvil::Contact
