@@ -232,6 +232,7 @@ namespace anvil::Contact
             rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
                                              contact_results[p].shape_torque);
           }
+        springs_across_partitions += contact_results[p].n_springs_across_partitions;
         // Every rank has the whole pair's friction work.
         energies.friction += contact_results[p].friction_work;
         if (distributed[p])
@@ -320,9 +321,22 @@ namespace anvil::Contact
 
 
 
+  // How often a spring's state crossed a partition boundary (distributed
+  // pairs; zero on one process).
+  void ContactPairs::write_summary(std::ostream &out) const
+  {
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      if (distributed[p])
+        {
+          out << "contact_springs_across_partitions," << springs_across_partitions << '\n';
+          return;
+        }
+  }
+
+
   void ContactPairs::serialize(StateArchive &ar)
   {
-    ar &contact_frequency_squared &contact_results &positions &velocities &forces;
+    ar &contact_frequency_squared &contact_results &positions &velocities &forces &springs_across_partitions;
     for (auto &c : pairs)
       c->serialize(ar);
   }

@@ -908,7 +908,7 @@ namespace anvil::Contact
     for (const unsigned int s : state_nodes)
       contact_state[s] = {};
     state_nodes.clear();
-    records.assign(7, 0.);
+    records.assign(8, 0.);
     ContactResult own;
     for (unsigned int c = 0; c < near_nodes.size(); ++c)
       {
@@ -1050,7 +1050,7 @@ namespace anvil::Contact
     // The own terms of the springs' work (book_spring_work()), over the
     // nodes with a spring or a gradient force in this step or the last
     // (the replay puts them in order).
-    const std::size_t n_contact = (records.size() - 7) / 16;
+    const std::size_t n_contact = (records.size() - 8) / 16;
     {
       const auto &f1 = spring_force[slave_index], &l1 = spring_depth[slave_index];
       for (const auto *list : {&springs_now, &springs_before})
@@ -1065,7 +1065,7 @@ namespace anvil::Contact
         for (const unsigned int i : *list)
           target_mark[i] = 0;
     }
-    const std::size_t n_spring = (records.size() - 7 - 16 * n_contact) / 2;
+    const std::size_t n_spring = (records.size() - 8 - 16 * n_contact) / 2;
     if (previous_position.size() == x.size())
       {
         for (const auto *list : {&gradients_now, &gradients_before})
@@ -1083,7 +1083,7 @@ namespace anvil::Contact
           for (const unsigned int i : *list)
             target_mark[i] = 0;
       }
-    const std::size_t n_geometric = (records.size() - 7 - 16 * n_contact - 2 * n_spring) / 2;
+    const std::size_t n_geometric = (records.size() - 8 - 16 * n_contact - 2 * n_spring) / 2;
     // The positions the gradient forces' work needs next step (the own
     // nodes'; compute_forces() keeps all of them between two meshes).
     if (previous_position.size() != x.size())
@@ -1102,6 +1102,7 @@ namespace anvil::Contact
     records[4] = n_contact;
     records[5] = n_spring;
     records[6] = n_geometric;
+    records[7] = state_nodes.size() - n_own_contact;
     replay_records(slave_is_first, result);
   }
 
@@ -1142,7 +1143,8 @@ namespace anvil::Contact
         result.max_penetration_ratio = std::max(result.max_penetration_ratio, h[2]);
         result.n_active += static_cast<unsigned int>(h[3]);
         const std::size_t c = h[4], sp = h[5], ge = h[6];
-        const std::size_t base = (h - all) + 7;
+        result.n_springs_across_partitions += static_cast<unsigned int>(h[7]);
+        const std::size_t base = (h - all) + 8;
         for (std::size_t q = 0; q < c; ++q)
           order.emplace_back(0, all[base + 16 * q], base + 16 * q);
         for (std::size_t q = 0; q < sp; ++q)

@@ -47,6 +47,7 @@ namespace anvil::Contact
     double add_forces(double dt) override;
     std::string describe() const override;
     void   write_history(double t, double dt) override;
+    void   write_summary(std::ostream &out) const override;
     void serialize(StateArchive &ar) override;
 
     /** The largest k/m of the springs in reach (all pairs), held against
@@ -97,5 +98,8 @@ namespace anvil::Contact
         is (a rigid body's sphere, plane, ...), -1: the body's mesh faces. */
     std::vector<std::array<int, 2>>  analytic_body;
     double                           contact_frequency_squared = 0;
+    /** Over the run: the springs whose state crossed a partition boundary
+        (summed over the steps and the distributed pairs). */
+    unsigned long springs_across_partitions = 0;
   };
 } // namespace anvil::Contact

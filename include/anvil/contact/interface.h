@@ -92,6 +92,10 @@ namespace anvil::Contact
         the largest such depth over the element's thickness. */
     unsigned int n_passed_through     = 0;
     double       passed_through_ratio = 0;
+    /** Springs of slave nodes of another rank whose gradient term acts on
+        this rank's nodes (a distributed pair; their state crossed a
+        partition boundary this step). */
+    unsigned int n_springs_across_partitions = 0;
   };
 
   /**
