@@ -15,7 +15,11 @@ end criterion; prints peak and residual displacement of the impact point
 and of the far face, peak hammer force, hourglass share, and each
 quantity's change from the previous mesh.
 
-Usage: python3 benchmarks/rc_column.py ANVIL [END_TIME_S] [--mesh-study]
+Whole scene (--whole): the production scene as it ships (its end
+criterion ends it once the impact is over), on 1 and 2 processes: end
+time, steps, wall time, sections.
+
+Usage: python3 benchmarks/rc_column.py ANVIL [END_TIME_S] [--mesh-study | --whole]
 (default end time 0.005 s). Figures, never asserts: timings on shared
 machines are noisy; compare the ratios within one run.
 """
@@ -58,7 +62,29 @@ def run(name, np, text, base=scene):
     return s, sections, out
 
 
-if "--mesh-study" not in sys.argv:
+def shares(sections):
+    total = sum(v for k, v in sections.items() if k not in ("setup",))
+    return ", ".join(f"{k} {100 * v / total:.0f} %" for k, v in sorted(sections.items(), key=lambda kv: -kv[1])
+                     if k != "setup")
+
+
+if "--whole" in sys.argv:
+    print("rc_column: the production scene (10 mm) as it ships, to its end criterion")
+    walls = {}
+    for np in (1, 2):
+        s, sections, _ = run(f"whole_np{np}", np, """
+subsection Simulation
+  set Plots = false
+end
+""")
+        walls[np] = s["wall_time_s"]
+        print(f"  np = {np}: ended at {1e3 * s['end_time_s']:.1f} ms, {int(s['steps'])} steps, "
+              f"{s['wall_time_s']:.1f} s wall ({s['wall_time_s'] / 60:.2f} min), "
+              f"{1e9 * s['wall_time_s'] / (s['elements'] * s['steps']):.0f} ns per element-cycle; "
+              f"{shares(sections)}", flush=True)
+    print(f"  two processes: speed-up {walls[1] / walls[2]:.2f}, parallel efficiency "
+          f"{100 * walls[1] / (2 * walls[2]):.0f} %")
+elif "--mesh-study" not in sys.argv:
     print(f"rc_column: production scene (10 mm) to {1e3 * end_time:g} ms")
     for np in (1, 2):
         s, sections, _ = run(f"cost_np{np}", np, f"""

@@ -311,6 +311,92 @@ namespace anvil::Rebar
             pcout << line.str() << std::endl;
           }
       }
+    setup_partition();
+  }
+
+
+  // @sect3{The partition of the bars}
+  //
+  // Each process's share (Share in reinforcement.h), and one exchange for
+  // all layouts: a deal.II vector over the bars' nodes numbered process by
+  // process (the own nodes of rank 0, then rank 1's, ...), three entries a
+  // node, whose ghosts are the halo.
+  void Reinforcement::setup_partition()
+  {
+    const MPI_Comm comm = get_mpi_communicator();
+    partitioned         = Utilities::MPI::n_mpi_processes(comm) > 1 && !bars.empty();
+    shares.assign(bars.size(), {});
+    history_rows.assign(bars.size(), {});
+    std::vector<unsigned int> own_keys; // (layout, node) pairs
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      {
+        const auto        &T = bars[r];
+        auto              &S = shares[r];
+        const unsigned int n = T.X.size();
+        std::vector<char>  relevant(n, 0), touched(n, 0);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            relevant[i] = T.host_dofs[i][0] >= 0;
+            if (T.host_owned[i])
+              {
+                S.own_nodes.push_back(i);
+                own_keys.insert(own_keys.end(), {r, i});
+              }
+            if (relevant[i])
+              S.relevant_nodes.push_back(i);
+          }
+        for (unsigned int k = 0; k < T.elements.size(); ++k)
+          if (relevant[T.elements[k][0]] || relevant[T.elements[k][1]])
+            {
+              S.elements.push_back(k);
+              S.own_element.push_back(T.host_owned[T.elements[k][0]]);
+              touched[T.elements[k][0]] = touched[T.elements[k][1]] = 1;
+            }
+        for (unsigned int i = 0; i < n; ++i)
+          if (touched[i] || relevant[i])
+            S.nodes.push_back(i);
+      }
+    if (!partitioned)
+      return;
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    const auto         all  = Utilities::MPI::all_gather(comm, own_keys);
+    std::vector<std::vector<unsigned long>> global(bars.size());
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      global[r].assign(bars[r].X.size(), 0);
+    unsigned long g = 0, first = 0;
+    for (unsigned int p = 0; p < all.size(); ++p)
+      {
+        if (p == rank)
+          first = g;
+        for (std::size_t q = 0; q + 1 < all[p].size(); q += 2)
+          global[all[p][q]][all[p][q + 1]] = g++;
+      }
+    IndexSet owned(3 * g), ghost(3 * g);
+    owned.add_range(3 * first, 3 * (first + own_keys.size() / 2));
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      {
+        const auto &T = bars[r];
+        auto       &S = shares[r];
+        // What this process does not compute itself: the bars' own
+        // positions of nodes not its own (bond-slip), the host points of
+        // nodes outside its own and ghost cells (perfect bond).
+        for (const unsigned int i : S.nodes)
+          if (!(layouts[r].bond_slip ? T.host_owned[i] : T.host_dofs[i][0] >= 0))
+            {
+              S.halo.push_back(i);
+              ghost.add_range(3 * global[r][i], 3 * global[r][i] + 3);
+            }
+      }
+    auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(owned, ghost, comm);
+    exchange.reinit(partitioner);
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      {
+        auto &S = shares[r];
+        for (const unsigned int i : S.own_nodes)
+          S.own_slot.push_back(3 * (global[r][i] - first));
+        for (const unsigned int i : S.halo)
+          S.halo_slot.push_back(partitioner->global_to_local(3 * global[r][i]));
+      }
   }
 
 
@@ -340,13 +426,15 @@ namespace anvil::Rebar
 
   // @sect3{Truss forces}
   //
-  // The nodes' positions x_r = sum N_I x_I come from the processes owning
-  // their host cells and are summed over all; every process then evaluates
-  // every truss element (T3D2: axial strain increment ln(l / l_old) from
-  // the current length, the steel's uniaxial form, force N = sigma A L0 / l
-  // for the Cauchy stress of a bar of constant volume) and adds N_I f_r to
-  // the host nodes it owns, in element order. Work of the axial force,
-  // (N_old + N) / 2 (l - l_old), goes to the internal energy.
+  // The nodes' positions x_r = sum N_I x_I come from the host cells,
+  // which are the process's own or ghost cells for its share (Share); what
+  // the ends of its elements need beyond those comes through the exchange.
+  // Each process evaluates its share's truss elements (T3D2: axial strain
+  // increment ln(l / l_old) from the current length, the steel's uniaxial
+  // form, force N = sigma A L0 / l for the Cauchy stress of a bar of
+  // constant volume) in element order and adds N_I f_r to the host nodes it
+  // owns. Work of the axial force, (N_old + N) / 2 (l - l_old), goes to the
+  // internal energy (each element's on the process of its first node).
   double Reinforcement::add_forces(const double dt)
   {
     const VectorType &position         = get_position();
@@ -354,38 +442,75 @@ namespace anvil::Rebar
     Energies         &energies         = get_energies();
     const MPI_Comm    mpi_communicator = get_mpi_communicator();
     double dt_crit = 1e300;
+    // The host points of the share's nodes in own and ghost cells; to the
+    // exchange, each own node's position (bond-slip: the bar's own node).
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      {
+        auto       &T  = bars[r];
+        const auto &S  = shares[r];
+        auto       &xr = T.x;
+        xr.resize(3 * T.X.size());
+        T.nodal_force.resize(3 * T.X.size());
+        for (const unsigned int i : S.nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            xr[3 * i + d] = 0;
+        for (const unsigned int i : S.relevant_nodes)
+          {
+            const auto N = Trusses::shape_values(T.xi[i]);
+            for (unsigned int I = 0; I < 8; ++I)
+              for (unsigned int d = 0; d < 3; ++d)
+                xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
+          }
+        if (partitioned)
+          {
+            if (r == 0)
+              exchange.zero_out_ghost_values();
+            const auto &own = layouts[r].bond_slip ? T.xs : xr;
+            for (unsigned int q = 0; q < S.own_nodes.size(); ++q)
+              for (unsigned int d = 0; d < 3; ++d)
+                exchange.local_element(S.own_slot[q] + d) = own[3 * S.own_nodes[q] + d];
+          }
+      }
+    if (partitioned)
+      exchange.update_ghost_values();
+    std::vector<double> work_done(2 * bars.size(), 0.);
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
         auto                 &T        = bars[r];
+        const auto           &S        = shares[r];
         const auto           &material = *layouts[r].material;
         const double          A        = layouts[r].area();
         const double          c        = std::sqrt(material.youngs_modulus() / material.density());
         const unsigned int    n        = T.X.size();
-        // The node positions go to T.x (the output's too): no allocation
-        // per step.
+        // The node positions are in T.x (the output's too): no
+        // allocation per step.
         auto &xr = T.x;
         auto &fr = T.nodal_force;
-        xr.assign(3 * n, 0.);
-        fr.assign(3 * n, 0.);
-        for (unsigned int i = 0; i < n; ++i)
-          if (T.host_owned[i])
-            {
-              const auto N = Trusses::shape_values(T.xi[i]);
-              for (unsigned int I = 0; I < 8; ++I)
-                for (unsigned int d = 0; d < 3; ++d)
-                  xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
-            }
-        Utilities::MPI::sum(xr, mpi_communicator, xr);
+        for (const unsigned int i : S.nodes)
+          for (unsigned int d = 0; d < 3; ++d)
+            fr[3 * i + d] = 0;
         const bool slip = layouts[r].bond_slip;
+        if (partitioned)
+          {
+            auto &into = slip ? T.xs : xr;
+            for (unsigned int q = 0; q < S.halo.size(); ++q)
+              for (unsigned int d = 0; d < 3; ++d)
+                into[3 * S.halo[q] + d] = exchange.local_element(S.halo_slot[q] + d);
+          }
         if (slip)
           {
             // The bars move on their own; xr are the host points they sit in.
-            T.xh = xr;
-            xr   = T.xs;
+            for (const unsigned int i : S.relevant_nodes)
+              for (unsigned int d = 0; d < 3; ++d)
+                T.xh[3 * i + d] = xr[3 * i + d];
+            for (const unsigned int i : S.nodes)
+              for (unsigned int d = 0; d < 3; ++d)
+                xr[3 * i + d] = T.xs[3 * i + d];
           }
         double work = 0;
-        for (unsigned int k = 0; k < T.elements.size(); ++k)
+        for (unsigned int e = 0; e < S.elements.size(); ++e)
           {
+            const unsigned int k = S.elements[e];
             const unsigned int a = T.elements[k][0], b = T.elements[k][1];
             Tensor<1, 3>       d;
             for (unsigned int q = 0; q < 3; ++q)
@@ -398,7 +523,8 @@ namespace anvil::Rebar
                 const double N = T.stress[k] * A * T.reference_length[k] / l;
                 const double w = 0.5 * (T.force[k] + N) * (l - T.length[k]);
                 T.energy[k] += w;
-                work += w;
+                if (S.own_element[e])
+                  work += w;
                 T.force[k]  = N;
                 T.length[k] = l;
               }
@@ -410,7 +536,10 @@ namespace anvil::Rebar
               }
             dt_crit = std::min(dt_crit, T.step_factor[k] * l / c);
           }
-        energies.internal += work;
+        if (partitioned)
+          work_done[2 * r] = work;
+        else
+          energies.internal += work;
         if (slip)
           {
             // @sect4{Bond-slip, seed Eq. (68)}
@@ -424,8 +553,10 @@ namespace anvil::Rebar
             const double tau_max = L.bond_modulus * L.slip_at_peak;
             const auto &trib    = T.tributary;
             auto       &tangent = T.tangent;
-            tangent.assign(n, Tensor<1, 3>());
-            for (unsigned int k = 0; k < T.elements.size(); ++k)
+            tangent.resize(n);
+            for (const unsigned int i : S.nodes)
+              tangent[i] = Tensor<1, 3>();
+            for (const unsigned int k : S.elements)
               {
                 const unsigned int a = T.elements[k][0], b = T.elements[k][1];
                 Tensor<1, 3>       dd;
@@ -437,7 +568,9 @@ namespace anvil::Rebar
               }
             const double perimeter = 3.14159265358979323846 * L.diameter;
             double       bond_work = 0;
-            for (unsigned int i = 0; i < n; ++i)
+            if (T.x_bond_old.empty())
+              T.x_bond_old.assign(3 * n, 0.);
+            for (const unsigned int i : S.relevant_nodes)
               {
                 const Tensor<1, 3> t = tangent[i] / tangent[i].norm();
                 Tensor<1, 3>       u;
@@ -471,14 +604,12 @@ namespace anvil::Rebar
                     f_old[q] = T.bond_force[3 * i + q];
                     T.bond_force[3 * i + q] = f[q];
                   }
-                if (dt > 0)
+                if (dt > 0 && T.host_owned[i])
                   {
                     for (unsigned int q = 0; q < 3; ++q)
-                      du[q] = u[q] - (T.x_bond_old.empty() ? 0. : T.x_bond_old[3 * i + q]);
+                      du[q] = u[q] - T.x_bond_old[3 * i + q];
                     bond_work -= 0.5 * (f_old + f) * du;
                   }
-                if (T.x_bond_old.empty())
-                  T.x_bond_old.assign(3 * n, 0.);
                 for (unsigned int q = 0; q < 3; ++q)
                   {
                     T.x_bond_old[3 * i + q] = u[q];
@@ -486,23 +617,38 @@ namespace anvil::Rebar
                   }
                 dt_crit = std::min(dt_crit, 2. * std::sqrt(T.ms[i] / (2. * k_t)));
               }
-            energies.bond += bond_work;
+            if (partitioned)
+              work_done[2 * r + 1] = bond_work;
+            else
+              energies.bond += bond_work;
             // The bars' nodes keep their forces; the host gets the bond
             // reactions, -f, through the shape functions.
-            T.fs = fr;
-            for (unsigned int i = 0; i < n; ++i)
+            for (const unsigned int i : S.nodes)
               for (unsigned int q = 0; q < 3; ++q)
-                fr[3 * i + q] = -T.bond_force[3 * i + q];
+                {
+                  T.fs[3 * i + q] = fr[3 * i + q];
+                  fr[3 * i + q]   = -T.bond_force[3 * i + q];
+                }
           }
-        for (unsigned int i = 0; i < n; ++i)
-          if (T.host_dofs[i][0] >= 0)
-            {
-              const auto N = Trusses::shape_values(T.xi[i]);
-              for (unsigned int I = 0; I < 8; ++I)
-                if (T.host_dofs[i][I] < long(force.locally_owned_size()))
-                  for (unsigned int d = 0; d < 3; ++d)
-                    force.local_element(T.host_dofs[i][I] + d) += N[I] * fr[3 * i + d];
-            }
+        for (const unsigned int i : S.relevant_nodes)
+          {
+            const auto N = Trusses::shape_values(T.xi[i]);
+            for (unsigned int I = 0; I < 8; ++I)
+              if (T.host_dofs[i][I] < long(force.locally_owned_size()))
+                for (unsigned int d = 0; d < 3; ++d)
+                  force.local_element(T.host_dofs[i][I] + d) += N[I] * fr[3 * i + d];
+          }
+      }
+    // Each process booked the work of its own elements and bonds.
+    if (partitioned)
+      {
+        Utilities::MPI::sum(work_done, mpi_communicator, work_done);
+        for (unsigned int r = 0; r < bars.size(); ++r)
+          {
+            energies.internal += work_done[2 * r];
+            if (layouts[r].bond_slip)
+              energies.bond += work_done[2 * r + 1];
+          }
       }
     return dt_crit;
   }
@@ -510,6 +656,63 @@ namespace anvil::Rebar
 
   void Reinforcement::output_frame(const double t, const unsigned int count)
   {
+    // Rank 0 writes the bars whole: each process sends its own nodes'
+    // positions (slip, bond stress) and its own elements' force, stress
+    // and history.
+    if (partitioned)
+      for (unsigned int r = 0; r < bars.size(); ++r)
+        {
+          auto               &T = bars[r];
+          const auto         &S = shares[r];
+          const bool          slip = !T.slip.empty();
+          std::vector<double> mine;
+          for (const unsigned int i : S.own_nodes)
+            {
+              mine.insert(mine.end(), {double(i), T.x.empty() ? T.X[i][0] : T.x[3 * i],
+                                       T.x.empty() ? T.X[i][1] : T.x[3 * i + 1],
+                                       T.x.empty() ? T.X[i][2] : T.x[3 * i + 2]});
+              if (slip)
+                mine.insert(mine.end(), {T.slip[i], T.bond_stress[i]});
+            }
+          const std::size_t node_numbers = mine.size();
+          for (unsigned int e = 0; e < S.elements.size(); ++e)
+            if (S.own_element[e])
+              {
+                const unsigned int k = S.elements[e];
+                mine.insert(mine.end(), {double(k), T.force[k], T.stress[k]});
+                for (unsigned int q = 0; q < T.n_history; ++q)
+                  mine.push_back(T.history[T.n_history * k + q]);
+              }
+          mine.insert(mine.begin(), double(node_numbers));
+          const auto parts = Utilities::MPI::gather(get_mpi_communicator(), mine, 0);
+          if (!is_root())
+            continue;
+          T.x.resize(3 * T.X.size());
+          const std::size_t per_node = slip ? 6 : 4, per_element = 3 + T.n_history;
+          for (const auto &part : parts)
+            {
+              const std::size_t nodes_end = 1 + static_cast<std::size_t>(part[0]);
+              for (std::size_t q = 1; q + per_node <= nodes_end; q += per_node)
+                {
+                  const unsigned int i = static_cast<unsigned int>(part[q]);
+                  for (unsigned int d = 0; d < 3; ++d)
+                    T.x[3 * i + d] = part[q + 1 + d];
+                  if (slip)
+                    {
+                      T.slip[i]        = part[q + 4];
+                      T.bond_stress[i] = part[q + 5];
+                    }
+                }
+              for (std::size_t q = nodes_end; q + per_element <= part.size(); q += per_element)
+                {
+                  const unsigned int k = static_cast<unsigned int>(part[q]);
+                  T.force[k]           = part[q + 1];
+                  T.stress[k]          = part[q + 2];
+                  for (unsigned int h = 0; h < T.n_history; ++h)
+                    T.history[T.n_history * k + h] = part[q + 3 + h];
+                }
+            }
+        }
     if (!is_root())
       return;
     const std::string &output_directory = get_output_directory();
@@ -582,21 +785,23 @@ namespace anvil::Rebar
 
   // @sect3{The bars' own nodes (bond-slip)}
   //
-  // Replicated on every process and advanced there by the same central
-  // differences as the host nodes; a pulled node keeps its velocity, and
-  // the work of the force that holds it is external work.
+  // Each process advances its own nodes by the same central differences as
+  // the host nodes; a pulled node keeps its velocity, and the work of the
+  // force that holds it is external work. The energy terms of the own
+  // nodes are summed over the processes.
   void Reinforcement::update_velocity(const double dt_previous, const double dt, OwnMotion &motion)
   {
     const auto &gravity = get_gravity();
-    double     &kinetic = motion.kinetic;
-    double     &work    = motion.work;
-    double     &power   = motion.power;
+    double      sums[3] = {0, 0, 0};
+    double     &kinetic = partitioned ? sums[0] : motion.kinetic;
+    double     &work    = partitioned ? sums[1] : motion.work;
+    double     &power   = partitioned ? sums[2] : motion.power;
     const double dt_avg = 0.5 * (dt_previous + dt);
     for (unsigned int r = 0; r < bars.size(); ++r)
       if (layouts[r].bond_slip)
         {
           auto &T = bars[r];
-          for (unsigned int i = 0; i < T.X.size(); ++i)
+          for (const unsigned int i : shares[r].own_nodes)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 const unsigned int j     = 3 * i + d;
@@ -622,6 +827,13 @@ namespace anvil::Rebar
                 power += f_total * (T.vs[j] - v_old);
               }
         }
+    if (partitioned)
+      {
+        Utilities::MPI::sum(ArrayView<const double>(sums, 3), get_mpi_communicator(), ArrayView<double>(sums, 3));
+        motion.kinetic += sums[0];
+        motion.work += sums[1];
+        motion.power += sums[2];
+      }
   }
 
 
@@ -629,18 +841,22 @@ namespace anvil::Rebar
   {
     const auto &gravity  = get_gravity();
     Energies   &energies = get_energies();
+    double      own_work = 0;
+    double     &work     = partitioned ? own_work : energies.external_work;
     for (unsigned int r = 0; r < bars.size(); ++r)
       if (layouts[r].bond_slip)
         {
           auto &T = bars[r];
-          for (unsigned int i = 0; i < T.X.size(); ++i)
+          for (const unsigned int i : shares[r].own_nodes)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 if (gravity.norm() > 0)
-                  energies.external_work += T.ms[i] * gravity[d] * dt * T.vs[3 * i + d];
+                  work += T.ms[i] * gravity[d] * dt * T.vs[3 * i + d];
                 T.xs[3 * i + d] += dt * T.vs[3 * i + d];
               }
         }
+    if (partitioned && gravity.norm() > 0)
+      energies.external_work += Utilities::MPI::sum(own_work, get_mpi_communicator());
   }
 
 
@@ -658,26 +874,49 @@ namespace anvil::Rebar
         }
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
+        const auto &h = history_rows[r];
+        files[r] << std::setprecision(12) << t << ',' << h[0] << ',' << -h[1] << ',' << h[2] << ',' << -h[3]
+                 << ',' << h[4] << ',' << h[5] << ',' << h[6] << ',' << h[7] << ',' << h[8] << '\n';
+      }
+  }
+
+
+  // The row's extremes over each process's own elements, and the probe
+  // element's and node's values from their process.
+  void Reinforcement::prepare_history()
+  {
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      {
         const auto  &T     = bars[r];
+        const auto  &S     = shares[r];
         const auto   names = layouts[r].material->uniaxial_history_names();
         const auto   it    = std::find(names.begin(), names.end(), "effective_plastic_strain");
         double       fmax = -1e300, fmin = 1e300, smax = -1e300, smin = 1e300, ep = 0;
-        for (unsigned int k = 0; k < T.elements.size(); ++k)
-          {
-            fmax = std::max(fmax, T.force[k]);
-            fmin = std::min(fmin, T.force[k]);
-            smax = std::max(smax, T.stress[k]);
-            smin = std::min(smin, T.stress[k]);
-            if (it != names.end())
-              ep = std::max(ep, T.history[T.n_history * k + (it - names.begin())]);
-          }
+        for (unsigned int e = 0; e < S.elements.size(); ++e)
+          if (S.own_element[e])
+            {
+              const unsigned int k = S.elements[e];
+              fmax = std::max(fmax, T.force[k]);
+              fmin = std::min(fmin, T.force[k]);
+              smax = std::max(smax, T.stress[k]);
+              smin = std::min(smin, T.stress[k]);
+              if (it != names.end())
+                ep = std::max(ep, T.history[T.n_history * k + (it - names.begin())]);
+            }
+        // The probed element's first node: its slip and bond stress.
         const unsigned int probe = T.probe_element;
-        files[r] << std::setprecision(12) << t << ',' << fmax << ',' << fmin << ',' << smax
-                       << ',' << smin << ',' << ep << ',' << T.force[probe] << ',' << T.stress[probe];
-        // Bond-slip: slip and bond stress at the probed element's first node.
-        const unsigned int pn = T.elements[probe][0];
-        files[r] << ',' << (T.slip.empty() ? 0. : T.slip[pn]) << ','
-                       << (T.bond_stress.empty() ? 0. : T.bond_stress[pn]) << '\n';
+        const unsigned int pn    = T.elements[probe][0];
+        auto              &h     = history_rows[r];
+        h = {{fmax, -fmin, smax, -smin, ep, 0., 0., 0., 0.}};
+        if (T.host_owned[pn])
+          h = {{fmax, -fmin, smax, -smin, ep, T.force[probe], T.stress[probe],
+                T.slip.empty() ? 0. : T.slip[pn], T.bond_stress.empty() ? 0. : T.bond_stress[pn]}};
+        if (partitioned)
+          {
+            const MPI_Comm comm = get_mpi_communicator();
+            Utilities::MPI::max(ArrayView<const double>(h.data(), 5), comm, ArrayView<double>(h.data(), 5));
+            Utilities::MPI::sum(ArrayView<const double>(h.data() + 5, 4), comm, ArrayView<double>(h.data() + 5, 4));
+          }
       }
   }
 
@@ -685,9 +924,15 @@ namespace anvil::Rebar
 
   void Reinforcement::add_kinetic_energy(double &kinetic) const
   {
+    double  own = 0;
+    double &sum = partitioned ? own : kinetic;
     for (unsigned int r = 0; r < bars.size(); ++r)
-      for (unsigned int j = 0; j < bars[r].vs.size(); ++j)
-        kinetic += 0.5 * bars[r].ms[j / 3] * bars[r].vs[j] * bars[r].vs[j];
+      if (!bars[r].vs.empty())
+        for (const unsigned int i : shares[r].own_nodes)
+          for (unsigned int j = 3 * i; j < 3 * i + 3; ++j)
+            sum += 0.5 * bars[r].ms[j / 3] * bars[r].vs[j] * bars[r].vs[j];
+    if (partitioned)
+      kinetic += Utilities::MPI::sum(own, get_mpi_communicator());
   }
 
 
@@ -695,16 +940,25 @@ namespace anvil::Rebar
   // body's.
   void Reinforcement::add_momentum(const double dt, std::vector<double> &momentum) const
   {
-    const auto &gravity = get_gravity();
+    const auto         &gravity = get_gravity();
+    std::vector<double> own(partitioned ? momentum.size() : 0, 0.);
+    auto               &sum = partitioned ? own : momentum;
     for (unsigned int r = 0; r < bars.size(); ++r)
       if (layouts[r].bond_slip)
         {
           const unsigned int host = body_index(layouts[r].host);
           const auto        &T    = bars[r];
-          for (unsigned int j = 0; j < T.vs.size(); ++j)
-            momentum[3 * host + j % 3] +=
-              T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
+          for (const unsigned int i : shares[r].own_nodes)
+            for (unsigned int j = 3 * i; j < 3 * i + 3; ++j)
+              sum[3 * host + j % 3] +=
+                T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
         }
+    if (partitioned)
+      {
+        Utilities::MPI::sum(own, get_mpi_communicator(), own);
+        for (unsigned int k = 0; k < own.size(); ++k)
+          momentum[k] += own[k];
+      }
   }
 
 

@@ -22,6 +22,9 @@ namespace anvil
   {
     for (auto &postprocessor : postprocessors)
       postprocessor->execute(t, dt);
+    for (auto *family : contributors())
+      if (!family->empty())
+        family->prepare_history();
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     for (auto *family : contributors())

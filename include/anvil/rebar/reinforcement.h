@@ -9,6 +9,10 @@
 #include <anvil/rebar/rebar.h>
 #include <anvil/simulator/force_contributor.h>
 
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <array>
+
 namespace anvil::Rebar
 {
   class Reinforcement : public ForceContributor
@@ -48,8 +52,44 @@ namespace anvil::Rebar
         t.serialize(ar);
     }
 
+    /** The history row's figures of every layout, reduced over the
+        processes (rank 0 writes them in write_history()). */
+    void prepare_history() override;
+
   private:
     std::vector<Layout>      layouts;
     std::vector<Trusses>     bars;
+
+    /**
+     * The bars' partition. A node belongs to the process that owns its
+     * host cell. A process evaluates the elements with a node in its own
+     * or ghost cells (in element order), the bond of those nodes, and
+     * advances its own nodes; what the ends of those elements need from
+     * other processes (positions: the bars' own for bond-slip, the host
+     * points for perfect bond) comes through a ghost exchange. Elements
+     * and bonds on both sides of a boundary are evaluated on both, from
+     * the same numbers, so each process holds the state of one process's
+     * run. One process: every node is its own, nothing is exchanged.
+     */
+    struct Share
+    {
+      /** Own nodes, nodes in own or ghost cells, every node an evaluated
+          element touches, the evaluated elements, and per element whether
+          it is this process's (its first node is own: its work and its
+          history-row figures are booked here). */
+      std::vector<unsigned int> own_nodes, relevant_nodes, nodes, elements;
+      std::vector<char>         own_element;
+      /** The nodes another process sends (halo), and the local index in
+          the exchange of each own node and each halo node. */
+      std::vector<unsigned int> halo, own_slot, halo_slot;
+    };
+    void setup_partition();
+    bool                                               partitioned = false;
+    std::vector<Share>                                 shares;
+    dealii::LinearAlgebra::distributed::Vector<double> exchange;
+    /** Per layout: max / min axial force, max / min stress, max
+        effective plastic strain, the probe element's force and stress,
+        the probe node's slip and bond stress. */
+    std::vector<std::array<double, 9>> history_rows;
   };
 } // namespace anvil::Rebar

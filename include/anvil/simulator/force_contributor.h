@@ -102,6 +102,11 @@ namespace anvil
       (void)out;
     }
 
+    /** Before a history row, on every process: reduce what rank 0's
+        write_history() needs from the others (collective). */
+    virtual void prepare_history()
+    {}
+
     /** A history row at time @p t (rank 0 writes); @p dt: the coming step
         (the velocities at n are v^{n+1/2} - dt/2 a^n). */
     virtual void write_history(double t, double dt)
