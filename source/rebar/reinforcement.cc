@@ -936,7 +936,7 @@ namespace anvil::Rebar
   }
 
 
-  // Bond-slip bars (replicated): their momentum at time n with the host
+  // Bond-slip bars (each process its own nodes): their momentum at time n with the host
   // body's.
   void Reinforcement::add_momentum(const double dt, std::vector<double> &momentum) const
   {

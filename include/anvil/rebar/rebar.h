@@ -91,10 +91,11 @@ namespace anvil::Rebar
 
 
   /**
-   * The truss elements of one layout with their state. Replicated on every
-   * process (reinforcement has few nodes compared with the host): every
-   * process evaluates every element in the same order on the same
-   * positions, so the result does not depend on the partition.
+   * The truss elements of one layout with their state. Every process holds
+   * the arrays whole but keeps current only its share (the elements and
+   * nodes of its own and ghost cells, Reinforcement::Share); it evaluates
+   * them in element order on the same positions as one process would, so
+   * the result does not depend on the partition.
    */
   struct Trusses
   {
