@@ -38,7 +38,6 @@ namespace anvil::Contact
     const MPI_Comm     mpi_communicator = get_mpi_communicator();
     const std::string &scene_file       = get_scene_file();
     const unsigned int n_pairs          = pairs.size();
-    local_index.assign(n_pairs, {});
     relevant_index.assign(n_pairs, {});
     owned_index.assign(n_pairs, {});
     distributed.assign(n_pairs, 0);
@@ -117,38 +116,26 @@ namespace anvil::Contact
         if (bodies[body[0]].is_rigid() && bodies[body[1]].is_rigid())
           throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
                            "': both bodies are rigid");
-        const auto &dofs = pairs[p]->node_dofs();
-        local_index[p].resize(dofs.size());
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          local_index[p][i] =
-            dof_handler.locally_owned_dofs().is_element(dofs[i]) ?
-              long(position.get_partitioner()->global_to_local(dofs[i])) :
-              -1;
         // A pair that evaluates each rank's share reads the nodes of the
         // rank's own and ghost cells, and is not gathered.
+        const auto &dofs        = pairs[p]->node_dofs();
+        const auto &partitioner = *position.get_partitioner();
         place_analytic_shapes(p);
         distributed[p] = pairs[p]->distribute(mpi_communicator, dof_handler.locally_owned_dofs());
-        relevant_index[p].clear();
-        owned_index[p].clear();
-        if (distributed[p])
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            {
-              if (position.get_partitioner()->in_local_range(dofs[i]) ||
-                  position.get_partitioner()->is_ghost_entry(dofs[i]))
-                relevant_index[p].emplace_back(
-                  i, position.get_partitioner()->global_to_local(dofs[i]));
-              if (local_index[p][i] >= 0)
-                owned_index[p].emplace_back(i, local_index[p][i]);
-            }
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          {
+            if (partitioner.in_local_range(dofs[i]))
+              owned_index[p].emplace_back(i, partitioner.global_to_local(dofs[i]));
+            if (distributed[p] && (partitioner.in_local_range(dofs[i]) || partitioner.is_ghost_entry(dofs[i])))
+              relevant_index[p].emplace_back(i, partitioner.global_to_local(dofs[i]));
+          }
         // The pair's node masses (normal damping, the springs' frequency in
         // the stable step, which each evaluation updates).
         std::vector<double> m(dofs.size(), 0.);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          if (local_index[p][i] >= 0)
-            m[i] = mass.local_element(local_index[p][i]);
+        for (const auto &[i, local] : owned_index[p])
+          m[i] = mass.local_element(local);
         Utilities::MPI::sum(m, mpi_communicator, m);
         pairs[p]->set_node_masses(m);
-        place_analytic_shapes(p);
         positions[p].resize(3 * dofs.size());
         if (pairs[p]->needs_velocities())
           velocities[p].resize(3 * dofs.size());
@@ -186,7 +173,6 @@ namespace anvil::Contact
         auto &xs = positions[p];
         auto &vs = velocities[p];
         auto &fs = forces[p];
-        const auto &index = local_index[p];
         if (distributed[p])
           {
             // Only the entries of the own and ghost nodes are ever set;
@@ -207,14 +193,13 @@ namespace anvil::Contact
             std::fill(xs.begin(), xs.end(), 0.);
             std::fill(vs.begin(), vs.end(), 0.);
             std::fill(fs.begin(), fs.end(), 0.);
-            for (unsigned int i = 0; i < index.size(); ++i)
-              if (index[i] >= 0)
-                for (unsigned int d = 0; d < 3; ++d)
-                  {
-                    xs[3 * i + d] = position.local_element(index[i] + d);
-                    if (!vs.empty())
-                      vs[3 * i + d] = velocity.local_element(index[i] + d);
-                  }
+            for (const auto &[i, local] : owned_index[p])
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  xs[3 * i + d] = position.local_element(local + d);
+                  if (!vs.empty())
+                    vs[3 * i + d] = velocity.local_element(local + d);
+                }
             Utilities::MPI::sum(xs, mpi_communicator, xs);
             if (!vs.empty())
               Utilities::MPI::sum(vs, mpi_communicator, vs);
@@ -235,15 +220,9 @@ namespace anvil::Contact
         springs_across_partitions += contact_results[p].n_springs_across_partitions;
         // Every rank has the whole pair's friction work.
         energies.friction += contact_results[p].friction_work;
-        if (distributed[p])
-          for (const auto &[i, local] : owned_index[p])
-            for (unsigned int d = 0; d < 3; ++d)
-              force.local_element(local + d) += fs[3 * i + d];
-        else
-          for (unsigned int i = 0; i < index.size(); ++i)
-            if (index[i] >= 0)
-              for (unsigned int d = 0; d < 3; ++d)
-                force.local_element(index[i] + d) += fs[3 * i + d];
+        for (const auto &[i, local] : owned_index[p])
+          for (unsigned int d = 0; d < 3; ++d)
+            force.local_element(local + d) += fs[3 * i + d];
       }
     contact_frequency_squared = std::max(contact_frequency_squared, held_frequency_squared);
     return 1e300;

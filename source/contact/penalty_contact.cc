@@ -786,6 +786,9 @@ namespace anvil::Contact
     target_mark.assign(dofs.size(), 0);
     state_nodes.clear();
     own_slave_nodes.clear();
+    for (const unsigned int i : surface[has_analytic(0) ? 1 : 0].nodes)
+      if (owned[i])
+        own_slave_nodes.push_back(i);
     exchange.reset();
     if (dealii::Utilities::MPI::n_mpi_processes(comm) == 1)
       return true;
@@ -850,10 +853,8 @@ namespace anvil::Contact
         springs_before.clear();
         gradients_before.clear();
       }
-    if (own_slave_nodes.empty())
-      for (const unsigned int s : slave.nodes)
-        if (mine(s))
-          own_slave_nodes.push_back(s);
+    if (owned.empty() && own_slave_nodes.empty())
+      own_slave_nodes = slave.nodes; // never distributed: every node is own
     // This step's springs start from zero, last step's become the old
     // ones (the work, the friction's history): only the nodes that had a
     // spring or a gradient force in the last two steps are touched (as
@@ -908,7 +909,7 @@ namespace anvil::Contact
     for (const unsigned int s : state_nodes)
       contact_state[s] = {};
     state_nodes.clear();
-    records.assign(8, 0.);
+    records.assign(header_size, 0.);
     ContactResult own;
     for (unsigned int c = 0; c < near_nodes.size(); ++c)
       {
@@ -1050,7 +1051,7 @@ namespace anvil::Contact
     // The own terms of the springs' work (book_spring_work()), over the
     // nodes with a spring or a gradient force in this step or the last
     // (the replay puts them in order).
-    const std::size_t n_contact = (records.size() - 8) / 16;
+    const std::size_t n_contact = (records.size() - header_size) / contact_record_size;
     {
       const auto &f1 = spring_force[slave_index], &l1 = spring_depth[slave_index];
       for (const auto *list : {&springs_now, &springs_before})
@@ -1065,7 +1066,7 @@ namespace anvil::Contact
         for (const unsigned int i : *list)
           target_mark[i] = 0;
     }
-    const std::size_t n_spring = (records.size() - 8 - 16 * n_contact) / 2;
+    const std::size_t n_spring = (records.size() - header_size - contact_record_size * n_contact) / 2;
     if (previous_position.size() == x.size())
       {
         for (const auto *list : {&gradients_now, &gradients_before})
@@ -1083,7 +1084,8 @@ namespace anvil::Contact
           for (const unsigned int i : *list)
             target_mark[i] = 0;
       }
-    const std::size_t n_geometric = (records.size() - 8 - 16 * n_contact - 2 * n_spring) / 2;
+    const std::size_t n_geometric =
+      (records.size() - header_size - contact_record_size * n_contact - 2 * n_spring) / 2;
     // The positions the gradient forces' work needs next step (the own
     // nodes'; compute_forces() keeps all of them between two meshes).
     if (previous_position.size() != x.size())
@@ -1144,13 +1146,14 @@ namespace anvil::Contact
         result.n_active += static_cast<unsigned int>(h[3]);
         const std::size_t c = h[4], sp = h[5], ge = h[6];
         result.n_springs_across_partitions += static_cast<unsigned int>(h[7]);
-        const std::size_t base = (h - all) + 8;
+        const std::size_t base    = (h - all) + header_size;
+        const std::size_t springs = base + contact_record_size * c, geometric = springs + 2 * sp;
         for (std::size_t q = 0; q < c; ++q)
-          order.emplace_back(0, all[base + 16 * q], base + 16 * q);
+          order.emplace_back(0, all[base + contact_record_size * q], base + contact_record_size * q);
         for (std::size_t q = 0; q < sp; ++q)
-          order.emplace_back(1, all[base + 16 * c + 2 * q], base + 16 * c + 2 * q);
+          order.emplace_back(1, all[springs + 2 * q], springs + 2 * q);
         for (std::size_t q = 0; q < ge; ++q)
-          order.emplace_back(2, all[base + 16 * c + 2 * sp + 2 * q], base + 16 * c + 2 * sp + 2 * q);
+          order.emplace_back(2, all[geometric + 2 * q], geometric + 2 * q);
       }
     std::sort(order.begin(), order.end());
     const double sign = slave_is_first ? 1. : -1.;

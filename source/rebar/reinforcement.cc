@@ -444,6 +444,8 @@ namespace anvil::Rebar
     double dt_crit = 1e300;
     // The host points of the share's nodes in own and ghost cells; to the
     // exchange, each own node's position (bond-slip: the bar's own node).
+    if (partitioned)
+      exchange.zero_out_ghost_values();
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
         auto       &T  = bars[r];
@@ -463,8 +465,6 @@ namespace anvil::Rebar
           }
         if (partitioned)
           {
-            if (r == 0)
-              exchange.zero_out_ghost_values();
             const auto &own = layouts[r].bond_slip ? T.xs : xr;
             for (unsigned int q = 0; q < S.own_nodes.size(); ++q)
               for (unsigned int d = 0; d < 3; ++d)
@@ -473,7 +473,7 @@ namespace anvil::Rebar
       }
     if (partitioned)
       exchange.update_ghost_values();
-    std::vector<double> work_done(2 * bars.size(), 0.);
+    work_done.assign(2 * bars.size(), 0.);
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
         auto                 &T        = bars[r];

@@ -84,12 +84,10 @@ namespace anvil::Contact
     std::vector<std::unique_ptr<Algorithm>> pairs;
     std::vector<unsigned char>              inactive;
     RigidBody::RigidBodies                 &rigid_bodies;
-    /** Per pair: local index of each pair node's x dof on this rank if
-        owned, else -1; and the gather/scatter buffers. */
-    std::vector<std::vector<long>>   local_index;
     /** Per pair: whether it evaluates each rank's share (distribute()),
-        and (pair node, local index) of its nodes on the rank's own and
-        ghost cells, and of its own nodes. */
+        and (pair node, local index of its x dof) of its nodes on the
+        rank's own and ghost cells (distributed pairs) and of its own
+        nodes; the gather/scatter buffers. */
     std::vector<unsigned char>                                           distributed;
     std::vector<std::vector<std::pair<unsigned int, unsigned int>>> relevant_index, owned_index;
     std::vector<std::vector<double>> positions, velocities, forces;

@@ -261,6 +261,11 @@ namespace anvil::Contact
     std::vector<unsigned int>                              state_nodes, targets, candidates;
     std::vector<char>                                      target_mark;
     std::vector<double>                                    records, gathered;
+    /** The records' layout: a header (frequency^2, max penetration, max
+        ratio, active nodes, the counts of the three kinds, springs across
+        partitions), then per node in contact 16 numbers, per spring-work
+        term 2 (key, value). */
+    static constexpr std::size_t header_size = 8, contact_record_size = 16;
     std::vector<int>                                       record_counts, record_offsets;
     std::vector<std::tuple<int, double, std::size_t>>      order;
     /** The own slave nodes; the own nodes with a spring (in contact) and

@@ -91,5 +91,8 @@ namespace anvil::Rebar
         effective plastic strain, the probe element's force and stress,
         the probe node's slip and bond stress. */
     std::vector<std::array<double, 9>> history_rows;
+    /** Per layout, this process's share of the step's truss and bond work
+        (summed over the processes; kept, so that a step allocates nothing). */
+    std::vector<double> work_done;
   };
 } // namespace anvil::Rebar
