@@ -192,7 +192,7 @@ namespace anvil::Postprocess
         {
           write_atomically(output_directory + "/" +
                              files[Utilities::MPI::this_mpi_process(mpi_communicator)],
-                           Vtu::vtu_text(piece, t, output_count));
+                           [&](std::ostream &out) { Vtu::write_vtu(out, piece, t, output_count); });
         }
       catch (const OutputError &e)
         {

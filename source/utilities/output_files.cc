@@ -19,13 +19,19 @@ namespace anvil
 
   void write_atomically(const std::string &path, const std::string &text)
   {
+    write_atomically(path, [&text](std::ostream &out) { out.write(text.data(), text.size()); });
+  }
+
+
+  void write_atomically(const std::string &path, const std::function<void(std::ostream &)> &write)
+  {
     const std::string tmp = path + ".tmp";
     errno                 = 0;
     {
       std::ofstream out(tmp);
       if (!out)
         throw OutputError("cannot create " + tmp + ": " + cause());
-      out.write(text.data(), text.size());
+      write(out);
       out.flush();
       if (!out)
         throw OutputError("cannot write " + tmp + ": " + cause());

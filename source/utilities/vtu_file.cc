@@ -47,7 +47,7 @@ namespace anvil::Vtu
 
     // One DataArray element: a UInt64 byte count, then the values, in one
     // base64 stream (VTK's 'binary' inline format without compression).
-    void data_array(std::ostringstream &xml, const std::string &name, const Array::Type type,
+    void data_array(std::ostream &xml, const std::string &name, const Array::Type type,
                     const unsigned int components, const std::vector<double> &values,
                     const bool field_data = false)
     {
@@ -84,10 +84,9 @@ namespace anvil::Vtu
   } // namespace
 
 
-  std::string vtu_text(const Piece &piece, const double time, const unsigned int cycle)
+  void write_vtu(std::ostream &xml, const Piece &piece, const double time, const unsigned int cycle)
   {
-    const std::size_t  n_points = piece.points.size() / 3, n_cells = piece.hexahedra.size() / 8;
-    std::ostringstream xml;
+    const std::size_t n_points = piece.points.size() / 3, n_cells = piece.hexahedra.size() / 8;
     xml << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
            "header_type=\"UInt64\">\n"
@@ -123,7 +122,6 @@ namespace anvil::Vtu
     for (const auto &a : piece.cell_data)
       data_array(xml, a.name, a.type, a.components, a.values);
     xml << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-    return xml.str();
   }
 
 

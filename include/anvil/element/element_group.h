@@ -318,7 +318,15 @@ namespace anvil::Element
     const unsigned int              n_qp;
     const unsigned int              n_hist;
 
+    /** The nodes' first nodal-vector entries, by batch of W elements and
+        node-major within a batch (node(e, n)), so that the batched loop
+        reads a batch's node n as one vector. */
     std::vector<unsigned int> nodes;
+    static constexpr unsigned int W = MaterialModel::Interface::batch_size;
+    unsigned int node(const unsigned int e, const unsigned int n) const
+    {
+      return nodes[(e / W) * 8 * W + n * W + e % W];
+    }
     std::vector<unsigned int> cell_index;
     std::vector<unsigned long> global_id;
     /** 1 for intact elements, 0 for eroded ones; empty for materials that

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,10 @@ namespace anvil
    * is complete. Throws OutputError naming the file and the cause.
    */
   void write_atomically(const std::string &path, const std::string &text);
+
+  /** The same with the text written to a stream by @p write (a large file
+      that need not be held in memory whole). */
+  void write_atomically(const std::string &path, const std::function<void(std::ostream &)> &write);
 
   /**
    * A CSV history: rows are composed in memory and reach the file only

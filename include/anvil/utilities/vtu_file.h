@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,9 +41,10 @@ namespace anvil::Vtu
     std::vector<Array>        point_data, cell_data;
   };
 
-  /** The text of a .vtu file of @p piece (inline base64 binary, little
-      endian, UInt64 headers), with the field data TIME and CYCLE. */
-  std::string vtu_text(const Piece &piece, double time, unsigned int cycle);
+  /** Write the .vtu file of @p piece (inline base64 binary, little
+      endian, UInt64 headers), with the field data TIME and CYCLE, to @p out
+      array by array (the file's text is never held whole in memory). */
+  void write_vtu(std::ostream &out, const Piece &piece, double time, unsigned int cycle);
 
   /** The text of a .pvtu file whose pieces are @p files (relative to it),
       with the arrays of @p layout (its values unused). */
