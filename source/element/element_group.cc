@@ -1298,7 +1298,7 @@ namespace anvil::Element
               for (unsigned int c = 0; c < 3; ++c)
                 fc[1u << c][a][l] = 0.125 * G[a][c][l];
               for (unsigned int j = 0; j < 4; ++j)
-                fc[gamma_index[j]][a][l] = (H != HourglassType::none ? -r[a][j][l] : 0.);
+                fc[gamma_index[j]][a][l] = -r[a][j][l]; // zero without hourglass control
             }
         walsh_transform<true>(fc, fe);
 
