@@ -1051,6 +1051,7 @@ namespace anvil::Element
         if (inverted)
           {
             // Let the reference loop find and report the element.
+            ++reference_fallbacks;
             const LoopResult r = loop<Formulation::updated_lagrangian, Integration::one_point, H>(
               x, v, dt, force, e0, e0 + n_valid);
             min_dt2 = std::min(min_dt2, r.critical_time_step * r.critical_time_step);

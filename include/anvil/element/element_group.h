@@ -250,6 +250,14 @@ namespace anvil::Element
     /** Bytes of state held per element (solver arrays only). */
     double memory_per_element() const;
 
+    /** Batches the batched loop handed to the reference loop because an
+        element's Jacobian was not positive (tests: the fast path must have
+        run). */
+    unsigned long n_reference_fallbacks() const
+    {
+      return reference_fallbacks;
+    }
+
     /**
      * Cauchy stress (Voigt) averaged over the element from the stored
      * stresses and current positions @p x.
@@ -359,6 +367,7 @@ namespace anvil::Element
     /** Per element, the smallest over its nodes of m_I / sum_e (m_e / 8)
         (at most 1; set_nodal_mass_ratio()), a factor of shape_factor. */
     std::vector<double> mass_factor;
+    unsigned long reference_fallbacks = 0;
     static constexpr unsigned int shape_refresh_interval = 8;
     unsigned int                  n_calls                = 0;
     bool                          refresh_shape          = true;
