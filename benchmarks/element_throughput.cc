@@ -12,9 +12,10 @@
  * solver state per element and the peak memory per element. Speed-ups are
  * ratios within one run (these machines differ by 30 % between runs).
  *
- * Usage: element_throughput [n] [cycles] [one-point]
+ * Usage: element_throughput [n] [cycles] [one-point | materials]
  * (one-point: the one-point elastic step and the reference loop alone,
- * three times in turn, for A/B comparisons of builds)
+ * three times in turn, for A/B comparisons of builds; materials: the
+ * elastic step and each material's ratio to it, three times in turn)
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
@@ -164,6 +165,44 @@ int main(int argc, char **argv)
         }
       return 0;
     }
+  // Each material against the elastic step, in turn (A/B comparisons of
+  // the material updates).
+  const auto steel_yielding = [&](const bool rate) {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, true, rate);
+  };
+  // Steel below yield (the seed's 235 MPa), with rate effects: most of a
+  // structure's steel at any time.
+  const auto steel_elastic = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, true, true, false, 0.2, false, 2.35e8);
+  };
+  const auto concrete_cracking = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, false, true);
+  };
+  // Concrete loaded below cracking (the velocity field / 50: strains below
+  // 3e-5 by the last cycle, f_t / E = 1e-4), with rate effects: most of a
+  // structure's concrete at any time.
+  const auto concrete_elastic = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, true, true, 0.02);
+  };
+  if (argc > 3 && std::string(argv[3]) == "materials")
+    {
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const double e  = run(n, cycles, Element::Integration::one_point).ns_per_element_cycle;
+          const double se = steel_elastic().ns_per_element_cycle;
+          const double sy = steel_yielding(false).ns_per_element_cycle;
+          const double ce = concrete_elastic().ns_per_element_cycle;
+          const double cc = concrete_cracking().ns_per_element_cycle;
+          std::printf("elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding %.2f, "
+                      "concrete elastic range %.2f, concrete cracking %.2f\n",
+                      e, se / e, sy / e, ce / e, cc / e);
+        }
+      return 0;
+    }
   const Result one  = run(n, cycles, Element::Integration::one_point);
   const Result ref  = reference();
   const Result full = run(n, cycles / 4 + 1, Element::Integration::full);
@@ -171,21 +210,11 @@ int main(int argc, char **argv)
   const Result stiff = run(n, cycles, Element::Integration::one_point, Element::HourglassType::stiffness);
   const Result tl    = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                            Formulation::total_lagrangian);
-  const Result pk   = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-                           Formulation::updated_lagrangian, true, false);
-  const Result pkr  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-                           Formulation::updated_lagrangian, true, true);
-  const Result cdp  = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-                           Formulation::updated_lagrangian, false, false, true);
-  // Concrete loaded below cracking (the velocity field / 50: strains below
-  // 3e-5 by the last cycle, f_t / E = 1e-4), with rate effects: most of a
-  // structure's concrete at any time.
-  const Result cdp_elastic = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-                                 Formulation::updated_lagrangian, false, true, true, 0.02);
-  // Steel below yield (the seed's 235 MPa), with rate effects: most of a
-  // structure's steel at any time.
-  const Result pk_elastic = run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-                                Formulation::updated_lagrangian, true, true, false, 0.2, false, 2.35e8);
+  const Result pk          = steel_yielding(false);
+  const Result pkr         = steel_yielding(true);
+  const Result cdp         = concrete_cracking();
+  const Result cdp_elastic = concrete_elastic();
+  const Result pk_elastic  = steel_elastic();
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   const double peak = usage.ru_maxrss * 1024.;

@@ -382,6 +382,20 @@ namespace anvil::MaterialModel
     eccentric_term = p.eccentricity * p.curves.tensile_strength * tan_psi;
     if (!p.erosion)
       par.erosion_principal_strain = par.erosion_damage = 0.;
+    // The history holds what this scene needs.
+    unsigned int n = n_base_history;
+    if (par.erosion_principal_strain > 0)
+      {
+        i_max_strain = n;
+        i_strain     = n + 1;
+        n += 7;
+      }
+    if (par.viscosity > 0)
+      {
+        i_viscous_stress = n;
+        n += 6;
+      }
+    n_ul_history = n;
   }
 
 
@@ -397,8 +411,8 @@ namespace anvil::MaterialModel
     if (par.rate_effects)
       {
         names[i_rate] = "strain_rate";
-        names[i_cdif] = "compressive_DIF";
-        names[i_tdif] = "tensile_DIF";
+        names[compressive_dif_index()] = "compressive_DIF";
+        names[tensile_dif_index()]     = "tensile_DIF";
       }
     if (par.erosion_principal_strain > 0)
       names[i_max_strain] = "max_principal_strain";
@@ -411,9 +425,9 @@ namespace anvil::MaterialModel
     const double rate = std::max(h[i_rate], 0.);
     if (k == i_rate)
       return rate;
-    if (k == i_cdif)
+    if (k == compressive_dif_index())
       return par.rate_effects ? ConcreteDIF::compressive(rate, par.cube_strength) : 1.;
-    if (k == i_tdif)
+    if (k == tensile_dif_index())
       return par.rate_effects ? ConcreteDIF::tensile(rate, par.dif_strength) : 1.;
     return h[k];
   }

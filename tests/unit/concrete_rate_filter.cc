@@ -54,8 +54,8 @@ namespace
           worst_error = std::max(worst_error, std::abs(h[C::i_rate] - expected) / (r2 - r1));
         worst_dif = std::max(
           {worst_dif,
-           std::abs(model.history_value(h.data(), C::i_cdif) - ConcreteDIF::compressive(h[C::i_rate], p.cube_strength)),
-           std::abs(model.history_value(h.data(), C::i_tdif) - ConcreteDIF::tensile(h[C::i_rate], 45.4e6))});
+           std::abs(model.history_value(h.data(), model.compressive_dif_index()) - ConcreteDIF::compressive(h[C::i_rate], p.cube_strength)),
+           std::abs(model.history_value(h.data(), model.tensile_dif_index()) - ConcreteDIF::tensile(h[C::i_rate], 45.4e6))});
       }
     return h[C::i_rate];
   }

@@ -163,7 +163,7 @@ int main()
           check_below("-(damaged elastic steps of one sign)", -double(damaged_elastic - damaged_elastic_mixed), -0.5);
           // Each variable relative to its largest magnitude over the block.
           double worst_h = 0;
-          for (unsigned int k = 0; k < C::n_ul_history; ++k)
+          for (unsigned int k = 0; k < concrete.n_updated_lagrangian_history(); ++k)
             {
               double scale = 1e-300;
               for (unsigned int e = 0; e < ref.n_elements(); ++e)

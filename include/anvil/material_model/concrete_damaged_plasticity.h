@@ -201,14 +201,27 @@ namespace anvil::MaterialModel
     static constexpr unsigned int i_rate               = 14;
     static constexpr unsigned int i_strength_factor    = 15;
     static constexpr unsigned int i_length             = 16;
-    static constexpr unsigned int i_max_strain         = 17;
-    static constexpr unsigned int i_strain             = 18;
-    static constexpr unsigned int i_viscous_stress     = 24;
-    static constexpr unsigned int n_ul_history         = 30;
-    /** Derived values (history_value(), not stored): the dynamic increase
+    /** The values every point has; what only some scenes need follows
+        them (the indices below, set by set()). */
+    static constexpr unsigned int n_base_history       = 17;
+
+    /** Index of the largest principal strain and of the total strain
+        (6), kept only for erosion by principal strain. */
+    unsigned int max_strain_index() const
+    {
+      return i_max_strain;
+    }
+    /** Index of the first of the two derived values of history_value()
+        past the stored ones: the compressive and tensile dynamic increase
         factors of the filtered rate. */
-    static constexpr unsigned int i_cdif               = n_ul_history;
-    static constexpr unsigned int i_tdif               = n_ul_history + 1;
+    unsigned int compressive_dif_index() const
+    {
+      return n_ul_history;
+    }
+    unsigned int tensile_dif_index() const
+    {
+      return n_ul_history + 1;
+    }
 
     unsigned int n_updated_lagrangian_history() const override
     {
@@ -386,6 +399,16 @@ namespace anvil::MaterialModel
 
     Parameters par;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
+
+    /** The history's optional parts, after the n_base_history values
+        every point has: the total strain and its largest principal value
+        (erosion by principal strain), the viscous stress (Duvaut-Lions
+        viscosity); a scene without them stores 17 values a point, not 30
+        (the explicit step's traffic, doc/performance.md). */
+    unsigned int i_max_strain     = n_base_history;
+    unsigned int i_strain         = n_base_history + 1;
+    unsigned int i_viscous_stress = n_base_history + 7;
+    unsigned int n_ul_history     = n_base_history + 13;
 
   };
 } // namespace anvil::MaterialModel
