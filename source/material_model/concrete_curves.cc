@@ -14,19 +14,9 @@ namespace anvil::MaterialModel
   PiecewiseLinear::PiecewiseLinear(std::vector<double> x, std::vector<double> y)
     : xs(std::move(x))
     , ys(std::move(y))
-  {}
-
-
-  double PiecewiseLinear::operator()(const double x) const
   {
-    if (x <= xs.front())
-      return ys.front();
-    if (x >= xs.back())
-      return ys.back();
-    const auto         it = std::upper_bound(xs.begin(), xs.end(), x);
-    const unsigned int i  = it - xs.begin();
-    const double       t  = (x - xs[i - 1]) / (xs[i] - xs[i - 1]);
-    return ys[i - 1] + t * (ys[i] - ys[i - 1]);
+    for (unsigned int i = 0; i + 1 < xs.size(); ++i)
+      slopes.push_back((ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i]));
   }
 
 

@@ -476,12 +476,10 @@ namespace anvil::MaterialModel
                                           double      &damage,
                                           double      &cohesion) const
   {
-    const double b     = par.tensile_plastic_fraction;
-    const double e_in  = kappa_t / b;
-    const double sigma = f * par.curves.tension(h * e_in);
-    const double X     = (1. - b) * youngs_modulus() * e_in;
-    cohesion           = sigma + X;
-    damage             = cohesion > 0 ? X / cohesion : 0.;
+    const double X = (1. - par.tensile_plastic_fraction) * youngs_modulus() *
+                     (kappa_t / par.tensile_plastic_fraction);
+    cohesion       = tensile_cohesion(kappa_t, h, f);
+    damage         = cohesion > 0 ? X / cohesion : 0.;
   }
 
 
@@ -490,12 +488,10 @@ namespace anvil::MaterialModel
                                               double      &damage,
                                               double      &cohesion) const
   {
-    const double b     = par.compressive_plastic_fraction;
-    const double e_in  = kappa_c / b;
-    const double sigma = f * par.curves.compression(e_in);
-    const double X     = (1. - b) * youngs_modulus() * e_in;
-    cohesion           = sigma + X;
-    damage             = cohesion > 0 ? X / cohesion : 0.;
+    const double X = (1. - par.compressive_plastic_fraction) * youngs_modulus() *
+                     (kappa_c / par.compressive_plastic_fraction);
+    cohesion       = compressive_cohesion(kappa_c, f);
+    damage         = cohesion > 0 ? X / cohesion : 0.;
   }
 
 
@@ -541,11 +537,7 @@ namespace anvil::MaterialModel
   {
     const double len = h[i_length], f = h[i_strength_factor];
     const double kt0 = h[i_kappa_t];
-    auto         cohesion = [&](const double kt) {
-      double d, c;
-      tension(kt, len, f, d, c);
-      return tdif * c;
-    };
+    auto         cohesion = [&](const double kt) { return tdif * tensile_cohesion(kt, len, f); };
     const double tol = 1e-10 * par.curves.compressive_strength;
     if (!(sp[0] > cohesion(kt0) + tol))
       return false;
@@ -646,11 +638,13 @@ namespace anvil::MaterialModel
     const double K   = bulk_modulus();
     const double a2  = eccentric_term * eccentric_term;
 
+    // The static cohesions at the start; F at hardening variables kt, kc
+    // (a variable that did not move keeps its cohesion: no curve lookup).
+    const double ct0 = tensile_cohesion(kt0, len, f), cc0 = compressive_cohesion(kc0, f);
     auto yield = [&](const double q, const double mean, const double s_max, const double kt,
                      const double kc) {
-      double dt_, ct, dc_, cc;
-      tension(kt, len, f, dt_, ct);
-      compression(kc, f, dc_, cc);
+      const double ct = kt != kt0 ? tensile_cohesion(kt, len, f) : ct0;
+      const double cc = kc != kc0 ? compressive_cohesion(kc, f) : cc0;
       return yield_function(q, mean, s_max, tdif * ct, cdif * cc);
     };
 
@@ -660,8 +654,12 @@ namespace anvil::MaterialModel
       return false;
 
     // The state after plastic multiplier dl: q by Newton on
-    // q (1 + 3 G dl / sqrt(a^2 + q^2)) = q_tr (from q_tr downwards: the
-    // left side is concave, so the iterates approach monotonically).
+    // g(q) = q (1 + 3 G dl / sqrt(a^2 + q^2)) - q_tr = 0. g is increasing
+    // and concave for q >= 0, so Newton's iterates approach the root
+    // monotonically from either side. They start from q_tr - 3 G dl, the
+    // root for a = 0 (Drucker-Prager), which lies below the root and within
+    // O(a^2 / q) of it: the eccentricity a = e f_t tan psi is small against
+    // the q of a return, and one or two steps reach round-off.
     struct State
     {
       double q, mean, s[3], kt, kc, F;
@@ -669,15 +667,20 @@ namespace anvil::MaterialModel
     auto evaluate = [&](const double dl) {
       State        st;
       const double c3 = 3. * mu * dl;
-      double       q  = q_tr;
-      for (unsigned int it = 0; it < 50 && q > 0; ++it)
+      double       q  = std::max(q_tr - c3, 0.);
+      // (With a = 0 and q = 0 the return reached the apex: q stays 0.)
+      for (unsigned int it = 0; it < 50 && q_tr > 0 && (q > 0 || a2 > 0); ++it)
         {
           const double Q  = std::sqrt(a2 + q * q);
           const double g  = q * (1. + c3 / Q) - q_tr;
           const double dg = 1. + c3 * a2 / (Q * Q * Q);
           const double dq = g / dg;
           q               = std::max(q - dq, 0.);
-          if (std::abs(dq) <= 1e-15 * q_tr)
+          // Converged when the step is at round-off, or when the next
+          // one would be: Newton's error after a step of dq is about
+          // |g'' / (2 g')| dq^2 <= 1.5 c3 a^2 / Q^4 dq^2 (g' >= 1).
+          if (std::abs(dq) <= 1e-15 * q_tr ||
+              1.5 * c3 * a2 * dq * dq <= 1e-15 * q_tr * (Q * Q) * (Q * Q))
             break;
         }
       const double scale = q_tr > 0 ? q / q_tr : 0.;
@@ -695,10 +698,20 @@ namespace anvil::MaterialModel
       return st;
     };
 
-    // Bracket the root, then Illinois (regula falsi that halves the weight
-    // of a retained end).
+    // Bracket the root, then regula falsi with the Anderson-Bjoerck weight
+    // on a retained end. The first guess is the Newton step of F at the
+    // trial with the cohesions fixed and a = 0: q falls by 3 G dl, the mean
+    // stress by K tan psi dl and s_max by K tan psi dl + 3 G dl s_tr,max /
+    // q_tr, each scaled in F by its coefficient (1, 3 alpha, beta or
+    // gamma). Hardening or softening of the cohesions moves the root; a
+    // guess short of it is doubled until F changes sign.
+    const double beta0    = cdif * cc0 / (tdif * ct0) * (1. - alpha) - (1. + alpha);
+    const double s_weight = sp[0] > 0 ? beta0 : gamma;
+    const double ds_max   = K * tan_psi + (q_tr > 0 ? 3. * mu * s_tr[0] / q_tr : 0.);
+    const double slope =
+      (3. * mu + 3. * alpha * K * tan_psi + std::max(s_weight, 0.) * ds_max) / (1. - alpha);
     double lo = 0, Flo = F0;
-    double hi = F0 * (1. - alpha) / (3. * mu + 3. * alpha * K * tan_psi);
+    double hi = F0 / slope;
     State  s_hi = evaluate(hi);
     for (unsigned int it = 0; it < 200 && s_hi.F > 0; ++it)
       {
@@ -714,20 +727,26 @@ namespace anvil::MaterialModel
       {
         const double dl = (lo * Fhi - hi * Flo) / (Fhi - Flo);
         st              = evaluate(dl);
+        // The end kept a second time has its F scaled (Anderson-Bjoerck:
+        // by 1 - F_new / F_replaced, or 1/2 if that is not positive).
+        auto weight = [](const double F_new, const double F_replaced) {
+          const double m = 1. - F_new / F_replaced;
+          return m > 0 ? m : 0.5;
+        };
         if (st.F > 0)
           {
-            lo  = dl;
-            Flo = st.F;
             if (side == 1)
-              Fhi *= 0.5;
+              Fhi *= weight(st.F, Flo);
+            lo   = dl;
+            Flo  = st.F;
             side = 1;
           }
         else
           {
-            hi  = dl;
-            Fhi = st.F;
             if (side == -1)
-              Flo *= 0.5;
+              Flo *= weight(st.F, Fhi);
+            hi   = dl;
+            Fhi  = st.F;
             side = -1;
           }
         if (hi - lo <= 1e-15 * hi)

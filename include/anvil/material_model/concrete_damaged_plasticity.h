@@ -23,7 +23,17 @@ namespace anvil::MaterialModel
     PiecewiseLinear() = default;
     PiecewiseLinear(std::vector<double> x, std::vector<double> y);
 
-    double operator()(const double x) const;
+    double operator()(const double x) const
+    {
+      if (x <= xs.front())
+        return ys.front();
+      if (x >= xs.back())
+        return ys.back();
+      // (No division in the return mapping's inner loop: the slopes are
+      // kept.)
+      const unsigned int i = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
+      return ys[i - 1] + (x - xs[i - 1]) * slopes[i - 1];
+    }
 
     const std::vector<double> &abscissae() const
     {
@@ -35,7 +45,7 @@ namespace anvil::MaterialModel
     }
 
   private:
-    std::vector<double> xs, ys;
+    std::vector<double> xs, ys, slopes;
   };
 
 
@@ -125,7 +135,7 @@ namespace anvil::MaterialModel
    * isotropic, so the return keeps the principal directions of the trial
    * stress; the deviator scales by q / q_trial and the mean stress shifts
    * by -K tan psi dlambda. One scalar equation F(dlambda) = 0 remains,
-   * solved by bracketing (Illinois) with the hardening variables advanced
+   * solved by bracketing (Anderson-Bjoerck) with the hardening variables advanced
    * implicitly; q(dlambda) of the hyperbola by Newton. No eigenvectors are
    * needed, and the apex and pure tension need no special case.
    *
@@ -297,6 +307,22 @@ namespace anvil::MaterialModel
     void tension(double kappa_t, double h, double f, double &damage, double &cohesion) const;
     /** Static compressive damage and effective cohesion. */
     void compression(double kappa_c, double f, double &damage, double &cohesion) const;
+
+    /** The cohesion of tension() alone (the return mapping's iterations
+        need no damage). */
+    double tensile_cohesion(const double kappa_t, const double h, const double f) const
+    {
+      const double b    = par.tensile_plastic_fraction;
+      const double e_in = kappa_t / b;
+      return f * par.curves.tension(h * e_in) + (1. - b) * youngs_modulus() * e_in;
+    }
+    /** The cohesion of compression() alone. */
+    double compressive_cohesion(const double kappa_c, const double f) const
+    {
+      const double b    = par.compressive_plastic_fraction;
+      const double e_in = kappa_c / b;
+      return f * par.curves.compression(e_in) + (1. - b) * youngs_modulus() * e_in;
+    }
 
     /** The yield function's alpha and gamma. */
     double get_alpha() const
