@@ -904,6 +904,23 @@ namespace anvil::MaterialModel
   // value whose sign differs from the middle one's, P_1 = (A - s_2)(A - s_3)
   // / ((s_1 - s_2)(s_1 - s_3)): well conditioned, since s_1 - s_2 >= s_1 when
   // s_2 <= 0 < s_1 (and likewise for s_3), so no eigenvectors are needed.
+  void ConcreteDamagedPlasticity::update_rate(const double (&D)[6][batch_size],
+                                              const double dt,
+                                              double (&rate)[batch_size]) const
+  {
+    alignas(64) double now[batch_size];
+    for (unsigned int l = 0; l < batch_size; ++l)
+      {
+        double largest, smallest;
+        Kinematics::extreme_principal_values(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l],
+                                             largest, smallest);
+        now[l] = std::max(std::abs(largest), std::abs(smallest));
+      }
+    for (unsigned int l = 0; l < batch_size; ++l)
+      rate[l] = filtered_rate(rate[l], now[l], dt);
+  }
+
+
   void ConcreteDamagedPlasticity::update_cauchy_stress_batch(const double (&D)[6][batch_size],
                                                              const double (&spin)[3][batch_size],
                                                              const double dt,
@@ -919,7 +936,7 @@ namespace anvil::MaterialModel
 
     alignas(64) double sbar[6][W], dsig[6][W], stored_old[W], rate[W], hv[6][W], nominal[6][W];
     alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
-      mean_stress[W], now[W];
+      mean_stress[W];
     alignas(64) double elastic[W]; // 1: inside the surfaces
     for (unsigned int l = 0; l < W; ++l)
       {
@@ -944,37 +961,78 @@ namespace anvil::MaterialModel
     bool undamaged_batch = true;
     for (unsigned int l = 0; l < W; ++l)
       undamaged_batch &= (hv[4][l] == 0.) & (hv[5][l] == 0.);
+    // The elastic trial, its mean stress and von Mises stress.
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
+                                      sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
+                                      sbar[5][l]);
+        const double tr = D[0][l] + D[1][l] + D[2][l];
+        for (unsigned int k = 0; k < 6; ++k)
+          {
+            dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
+            sbar[k][l] += dsig[k][l];
+          }
+        const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
+        const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
+        von_mises[l]   = std::sqrt(1.5 * (a * a + b * b + c * c) +
+                                 3. * (sbar[3][l] * sbar[3][l] + sbar[4][l] * sbar[4][l] +
+                                       sbar[5][l] * sbar[5][l]));
+        mean_stress[l] = mean;
+      }
+    // An undamaged batch whose points are all well inside needs no
+    // principal values: s_max <= mean + 2 q / 3 (the largest principal
+    // deviator is at most sqrt(2/3) |s|), and F does not fall as s_max
+    // grows where beta >= 0 (gamma >= 0 always), so the test at that bound
+    // and a margin of 1e-7 (|mean| + q), never smaller than the exact
+    // test's, passes only points the exact test passes too.
+    if (undamaged_batch)
+      {
+        bool all_inside = true;
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            const double q = von_mises[l], mean = mean_stress[l];
+            const bool   beta_nonnegative =
+              hv[3][l] * (1. - alpha) >= (1. + alpha) * hv[2][l];
+            all_inside &= beta_nonnegative &
+                          inside_surfaces(q, mean, mean + 2. / 3. * q, hv[2][l], hv[3][l],
+                                          1e-7 * (std::abs(mean) + q));
+          }
+        if (all_inside)
+          {
+            if (par.rate_effects)
+              update_rate(D, dt, rate);
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double *hl = h[l];
+                for (unsigned int k = 0; k < 6; ++k)
+                  {
+                    hl[i_effective_stress + k] = sbar[k][l];
+                    s[k][l]                    = sbar[k][l];
+                  }
+                hl[i_damage] = 0.;
+                if (par.rate_effects)
+                  hl[i_rate] = rate[l];
+              }
+            return;
+          }
+      }
+
     auto trial = [&](auto undamaged_tag) {
       constexpr bool undamaged = decltype(undamaged_tag)::value;
       for (unsigned int l = 0; l < W; ++l)
         {
-          stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
-                                        sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
-                                        sbar[5][l]);
-          const double tr = D[0][l] + D[1][l] + D[2][l];
-          for (unsigned int k = 0; k < 6; ++k)
-            {
-              dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
-              sbar[k][l] += dsig[k][l];
-            }
-
           // The trial's principal values and the two surfaces at the static
           // cohesions.
           double s1, s3;
           Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
                                                sbar[4][l], sbar[5][l], s1, s3);
-          const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
+          const double mean = mean_stress[l], q = von_mises[l];
           const double s2   = 3. * mean - s1 - s3;
-          const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
-          const double q =
-            std::sqrt(1.5 * (a * a + b * b + c * c) +
-                      3. * (sbar[3][l] * sbar[3][l] + sbar[4][l] * sbar[4][l] + sbar[5][l] * sbar[5][l]));
           // Inside at the static cohesions (first stage; see above), with a
           // margin for the round-off of the principal values.
           margin[l] = 1e-7 * std::max(std::abs(s1), std::abs(s3));
           largest[l] = s1;
-          von_mises[l] = q;
-          mean_stress[l] = mean;
           const bool inside = inside_surfaces(q, mean, s1, hv[2][l], hv[3][l], margin[l]);
           elastic[l]        = inside ? 1. : 0.;
           if constexpr (undamaged)
@@ -1015,17 +1073,7 @@ namespace anvil::MaterialModel
     else
       trial(std::false_type());
     if (par.rate_effects)
-      {
-        for (unsigned int l = 0; l < W; ++l)
-          {
-            double largest, smallest;
-            Kinematics::extreme_principal_values(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l],
-                                                 D[5][l], largest, smallest);
-            now[l] = std::max(std::abs(largest), std::abs(smallest));
-          }
-        for (unsigned int l = 0; l < W; ++l)
-          rate[l] = filtered_rate(rate[l], now[l], dt);
-      }
+      update_rate(D, dt, rate);
 
     for (unsigned int l = 0; l < W; ++l)
       {

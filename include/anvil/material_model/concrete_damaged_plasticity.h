@@ -412,6 +412,11 @@ namespace anvil::MaterialModel
       return rate < 0 ? now : rate + (now - rate) * (dt / (par.rate_filter_time + dt));
     }
 
+    /** The filtered strain rate of a batch after the step with
+        deformation rates @p D: the largest principal |D| through the
+        filter. */
+    void update_rate(const double (&D)[6][batch_size], double dt, double (&rate)[batch_size]) const;
+
     /** The total strain and its largest principal value (erosion by
         principal strain only). */
     void track_strain(const double *D, double dt, double *h) const;
