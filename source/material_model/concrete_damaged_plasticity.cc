@@ -986,6 +986,7 @@ namespace anvil::MaterialModel
     // grows where beta >= 0 (gamma >= 0 always), so the test at that bound
     // and a margin of 1e-7 (|mean| + q), never smaller than the exact
     // test's, passes only points the exact test passes too.
+    bool undamaged_and_inside = false;
     if (undamaged_batch)
       {
         bool all_inside = true;
@@ -999,23 +1000,14 @@ namespace anvil::MaterialModel
                                           1e-7 * (std::abs(mean) + q));
           }
         if (all_inside)
-          {
-            if (par.rate_effects)
-              update_rate(D, dt, rate);
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                double *hl = h[l];
-                for (unsigned int k = 0; k < 6; ++k)
-                  {
-                    hl[i_effective_stress + k] = sbar[k][l];
-                    s[k][l]                    = sbar[k][l];
-                  }
-                hl[i_damage] = 0.;
-                if (par.rate_effects)
-                  hl[i_rate] = rate[l];
-              }
-            return;
-          }
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              elastic[l] = 1.;
+              damage[l]  = 0.;
+              for (unsigned int k = 0; k < 6; ++k)
+                nominal[k][l] = sbar[k][l];
+            }
+        undamaged_and_inside = all_inside;
       }
 
     auto trial = [&](auto undamaged_tag) {
@@ -1068,10 +1060,13 @@ namespace anvil::MaterialModel
                             stored_old[l];
         }
     };
-    if (undamaged_batch)
-      trial(std::true_type());
-    else
-      trial(std::false_type());
+    if (!undamaged_and_inside)
+      {
+        if (undamaged_batch)
+          trial(std::true_type());
+        else
+          trial(std::false_type());
+      }
     if (par.rate_effects)
       update_rate(D, dt, rate);
 
