@@ -134,6 +134,60 @@ namespace anvil::Element
 
     using Kinematics::rotate_stress;
 
+    /** The derivatives at the 8 Gauss points transposed for the fully
+        integrated batched loop: by_point[n][c][q] = dN_n/dxi_c at point q
+        (lanes: points), by_node[q][c][n] the same (lanes: nodes). */
+    struct PointTables
+    {
+      double by_point[8][3][8];
+      double by_node[8][3][8];
+
+      constexpr PointTables()
+        : by_point()
+        , by_node()
+      {
+        for (unsigned int q = 0; q < 8; ++q)
+          for (unsigned int n = 0; n < 8; ++n)
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                by_point[n][c][q] = tables.dN[q][n][c];
+                by_node[q][c][n]  = tables.dN[q][n][c];
+              }
+      }
+    };
+
+    constexpr PointTables point_tables;
+
+    /** B = A^-1 for W 3x3 matrices with determinants @p det, lane by lane
+        (inv3()'s arithmetic). */
+    template <unsigned int W>
+    inline void inverse_batch(const double (&A)[3][3][W], const double *det, double (&B)[3][3][W])
+    {
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          const double r = 1. / det[l];
+          B[0][0][l] = r * (A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l]);
+          B[0][1][l] = r * (A[0][2][l] * A[2][1][l] - A[0][1][l] * A[2][2][l]);
+          B[0][2][l] = r * (A[0][1][l] * A[1][2][l] - A[0][2][l] * A[1][1][l]);
+          B[1][0][l] = r * (A[1][2][l] * A[2][0][l] - A[1][0][l] * A[2][2][l]);
+          B[1][1][l] = r * (A[0][0][l] * A[2][2][l] - A[0][2][l] * A[2][0][l]);
+          B[1][2][l] = r * (A[0][2][l] * A[1][0][l] - A[0][0][l] * A[1][2][l]);
+          B[2][0][l] = r * (A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l]);
+          B[2][1][l] = r * (A[0][1][l] * A[2][0][l] - A[0][0][l] * A[2][1][l]);
+          B[2][2][l] = r * (A[0][0][l] * A[1][1][l] - A[0][1][l] * A[1][0][l]);
+        }
+    }
+
+    /** det A for W 3x3 matrices, lane by lane (det3()'s arithmetic). */
+    template <unsigned int W>
+    inline void determinant_batch(const double (&A)[3][3][W], double (&det)[W])
+    {
+      for (unsigned int l = 0; l < W; ++l)
+        det[l] = A[0][0][l] * (A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l]) -
+                 A[0][1][l] * (A[1][0][l] * A[2][2][l] - A[1][2][l] * A[2][0][l]) +
+                 A[0][2][l] * (A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l]);
+    }
+
     /** The faces of the lexicographic hexahedron, each in cyclic order. */
     constexpr unsigned int faces[6][4] = {
       {0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
@@ -407,8 +461,9 @@ namespace anvil::Element
     // Elements that can erode run batched too: an eroded element's lane
     // is masked (see batched_loop).
     if (integration == Integration::full)
-      return ul ? loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
-                    x, v, dt, force, 0, n) :
+      return ul ? (batch_points ? full_batched_loop(x, v, dt, force) :
+                                  loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
+                                    x, v, dt, force, 0, n)) :
                   loop<Formulation::total_lagrangian, Integration::full, HourglassType::none>(
                     x, v, dt, force, 0, n);
     switch (hourglass)
@@ -942,6 +997,219 @@ namespace anvil::Element
   }
 
 
+  // @sect3{The batched fully integrated loop}
+  //
+  // Updated Lagrangian, 2x2x2 Gauss points, no hourglass control: the
+  // element's eight points are the lanes of a batch (the positions and
+  // velocities of its nodes are shared by all of them), so that the
+  // Jacobians, the velocity gradients, the stress rotation and the
+  // material update vectorise across the points, and the nodal forces
+  // across the nodes. The arithmetic and the order of every sum are
+  // loop<updated_lagrangian, full, none>'s with batch_points (the file is
+  // compiled without contraction to FMA), so the two give the same bits;
+  // tests/unit/fast_path compares this loop with the point-by-point one.
+  // An element with a point not positive (now or at mid-step) goes to
+  // loop(), which reports it.
+  LoopResult ElementGroup::full_batched_loop(const double *x,
+                                             const double *v,
+                                             const double  dt,
+                                             double       *force)
+  {
+    constexpr unsigned int nq   = 8;
+    const double           rho0 = material.density();
+    const double           M    = material.wave_modulus();
+    LoopResult             result;
+    double                 min_dt2   = 1e300;
+    const bool             can_erode = !alive.empty();
+    const unsigned int     n_el      = n_elements();
+    const auto            &dNp       = point_tables.by_point;
+    const auto            &dNn       = point_tables.by_node;
+
+    for (unsigned int e = 0; e < n_el; ++e)
+      {
+        if (can_erode && !alive[e])
+          continue;
+        const std::array<unsigned int, 8> en = element_nodes(e);
+        double                            xe[8][3], ve[8][3];
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            {
+              xe[n][a] = x[en[n] + a];
+              ve[n][a] = v[en[n] + a];
+            }
+
+        // Jacobians of position and velocity at the points.
+        alignas(64) double Jn[3][3][W] = {}, Jd[3][3][W] = {};
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              for (unsigned int l = 0; l < W; ++l)
+                {
+                  Jn[a][c][l] += xe[n][a] * dNp[n][c][l];
+                  Jd[a][c][l] += ve[n][a] * dNp[n][c][l];
+                }
+        alignas(64) double detn[W], Jm[3][3][W], detm[W];
+        determinant_batch(Jn, detn);
+        bool inverted = false;
+        for (unsigned int l = 0; l < W; ++l)
+          inverted |= !(detn[l] > 0);
+        if (dt > 0)
+          {
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int c = 0; c < 3; ++c)
+                for (unsigned int l = 0; l < W; ++l)
+                  Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
+            determinant_batch(Jm, detm);
+            for (unsigned int l = 0; l < W; ++l)
+              inverted |= !(detm[l] > 0);
+          }
+        if (inverted)
+          {
+            ++reference_fallbacks;
+            const LoopResult r =
+              loop<Formulation::updated_lagrangian, Integration::full, HourglassType::none>(
+                x, v, dt, force, e, e + 1);
+            min_dt2 = std::min(min_dt2, r.critical_time_step * r.critical_time_step);
+            result.add(r);
+            continue;
+          }
+        alignas(64) double Ji[3][3][W];
+        inverse_batch(Jn, detn, Ji);
+
+        // The stress update of the eight points as one batch.
+        double            *sig_e = &stresses[6 * e * nq];
+        alignas(64) double sig[6][W], old[6][W], D[6][W] = {}, p_int[W] = {};
+        for (unsigned int l = 0; l < W; ++l)
+          for (unsigned int k = 0; k < 6; ++k)
+            old[k][l] = sig[k][l] = sig_e[6 * l + k];
+        if (dt > 0)
+          {
+            alignas(64) double Jmi[3][3][W], L[3][3][W], spin[3][W];
+            inverse_batch(Jm, detm, Jmi);
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                for (unsigned int l = 0; l < W; ++l)
+                  L[a][b][l] = Jd[a][0][l] * Jmi[0][b][l] + Jd[a][1][l] * Jmi[1][b][l] +
+                               Jd[a][2][l] * Jmi[2][b][l];
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                D[0][l]    = L[0][0][l];
+                D[1][l]    = L[1][1][l];
+                D[2][l]    = L[2][2][l];
+                D[3][l]    = 0.5 * (L[0][1][l] + L[1][0][l]);
+                D[4][l]    = 0.5 * (L[1][2][l] + L[2][1][l]);
+                D[5][l]    = 0.5 * (L[0][2][l] + L[2][0][l]);
+                spin[0][l] = 0.5 * (L[0][1][l] - L[1][0][l]);
+                spin[1][l] = 0.5 * (L[1][2][l] - L[2][1][l]);
+                spin[2][l] = 0.5 * (L[0][2][l] - L[2][0][l]);
+              }
+            for (unsigned int l = 0; l < W; ++l)
+              rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l], sig[1][l], sig[2][l],
+                            sig[3][l], sig[4][l], sig[5][l]);
+            double *hist[W];
+            for (unsigned int l = 0; l < W; ++l)
+              hist[l] = n_hist ? &history[n_hist * (e * nq + l)] : nullptr;
+            material.update_cauchy_stress_batch(D, spin, dt, sig, hist);
+            // Seed Eq. (25) with the mid-step stress, per point.
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double mid[6], d[6];
+                for (unsigned int k = 0; k < 6; ++k)
+                  {
+                    mid[k] = 0.5 * (old[k][l] + sig[k][l]);
+                    d[k]   = D[k][l];
+                  }
+                p_int[l] = contract(mid, d) * dt * (detn[l] * tables.weight[l]);
+              }
+            for (unsigned int l = 0; l < W; ++l)
+              for (unsigned int k = 0; k < 6; ++k)
+                sig_e[6 * l + k] = sig[k][l];
+          }
+
+        // Characteristic length, bulk viscosity and the stress of the
+        // forces, G_ac = sigma_ab dxi_c/dx_b, at each point.
+        alignas(64) double grad2[W], sf[6][W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            grad2[l] = 0;
+            for (unsigned int c = 0; c < 3; ++c)
+              grad2[l] = std::max(grad2[l], Ji[c][0][l] * Ji[c][0][l] + Ji[c][1][l] * Ji[c][1][l] +
+                                              Ji[c][2][l] * Ji[c][2][l]);
+            for (unsigned int k = 0; k < 6; ++k)
+              sf[k][l] = sig[k][l];
+          }
+        double e_int = 0, e_visc = 0, volume = 0, max_grad2 = 0, dt_bulk2 = 1;
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            e_int += p_int[l];
+            volume += detn[l] * tables.weight[l];
+            max_grad2 = std::max(max_grad2, grad2[l]);
+            if (bulk_viscosity())
+              {
+                const double trD   = D[0][l] + D[1][l] + D[2][l];
+                const double jxw   = detn[l] * tables.weight[l];
+                const double rho_q = rho0 * reference_volume[e] / (8. * detn[l]);
+                double       f2;
+                const double q =
+                  bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2[l]), rho_q, std::sqrt(M / rho_q), f2);
+                dt_bulk2      = std::min(dt_bulk2, f2);
+                double &q_old = bulk_pressure[e * nq + l];
+                e_visc += 0.5 * (q_old + q) * (-trD) * dt * jxw;
+                q_old = q;
+                for (unsigned int k = 0; k < 3; ++k)
+                  sf[k][l] -= q;
+              }
+          }
+        alignas(64) double G[3][3][W];
+        for (unsigned int c = 0; c < 3; ++c)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              G[0][c][l] = sf[0][l] * Ji[c][0][l] + sf[3][l] * Ji[c][1][l] + sf[5][l] * Ji[c][2][l];
+              G[1][c][l] = sf[3][l] * Ji[c][0][l] + sf[1][l] * Ji[c][1][l] + sf[4][l] * Ji[c][2][l];
+              G[2][c][l] = sf[5][l] * Ji[c][0][l] + sf[4][l] * Ji[c][1][l] + sf[2][l] * Ji[c][2][l];
+            }
+        bool failed = false;
+        if (can_erode)
+          for (unsigned int l = 0; l < W; ++l)
+            failed |= material.point_failed(&history[n_hist * (e * nq + l)]);
+
+        // f_Ia -= jxw sum_c G_ac dN_I/dxi_c, point after point (lanes:
+        // nodes).
+        alignas(64) double fe[3][8] = {};
+        for (unsigned int q = 0; q < W; ++q)
+          {
+            const double jxw = detn[q] * tables.weight[q];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int n = 0; n < 8; ++n)
+                fe[a][n] -= jxw * (G[a][0][q] * dNn[q][0][n] + G[a][1][q] * dNn[q][1][n] +
+                                   G[a][2][q] * dNn[q][2][n]);
+          }
+
+        internal_energy[e] += e_int;
+        result.internal_energy_increment += energy_weight[e] * e_int;
+        if (failed)
+          {
+            erode(e, nq, result);
+            continue;
+          }
+        // Stable time step, as in loop().
+        const double rho_c = rho0 * reference_volume[e] / volume;
+        if (refresh_shape)
+          {
+            const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
+            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
+          }
+        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
+        result.viscous_energy_increment += energy_weight[e] * e_visc;
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            force[en[n] + a] += fe[a][n];
+      }
+    result.critical_time_step = std::sqrt(min_dt2);
+    return result;
+  }
+
+
   // A failed element's stresses go to zero and the energy it holds (strain,
   // plastic and hourglass work) moves from the internal and hourglass
   // energies to the eroded one.
@@ -1041,10 +1309,7 @@ namespace anvil::Element
                 Jd[a][c][l] = 0.125 * cv[1u << c][a][l];
               }
         alignas(64) double detn[W];
-        for (unsigned int l = 0; l < W; ++l)
-          detn[l] = Jn[0][0][l] * (Jn[1][1][l] * Jn[2][2][l] - Jn[1][2][l] * Jn[2][1][l]) -
-                    Jn[0][1][l] * (Jn[1][0][l] * Jn[2][2][l] - Jn[1][2][l] * Jn[2][0][l]) +
-                    Jn[0][2][l] * (Jn[1][0][l] * Jn[2][1][l] - Jn[1][1][l] * Jn[2][0][l]);
+        determinant_batch(Jn, detn);
         bool inverted = false;
         for (unsigned int l = 0; l < W; ++l)
           inverted |= !(detn[l] > 0);
@@ -1055,31 +1320,12 @@ namespace anvil::Element
             const LoopResult r = loop<Formulation::updated_lagrangian, Integration::one_point, H>(
               x, v, dt, force, e0, e0 + n_valid);
             min_dt2 = std::min(min_dt2, r.critical_time_step * r.critical_time_step);
-            result.internal_energy_increment += r.internal_energy_increment;
-            result.hourglass_energy_increment += r.hourglass_energy_increment;
-            result.viscous_energy_increment += r.viscous_energy_increment;
-            if (result.inverted_element < 0)
-              result.inverted_element = r.inverted_element;
+            result.add(r);
             continue;
           }
 
-        auto inverse = [](const double (&A)[3][3][W], const double *det, double (&B)[3][3][W]) {
-          for (unsigned int l = 0; l < W; ++l)
-            {
-              const double r = 1. / det[l];
-              B[0][0][l] = r * (A[1][1][l] * A[2][2][l] - A[1][2][l] * A[2][1][l]);
-              B[0][1][l] = r * (A[0][2][l] * A[2][1][l] - A[0][1][l] * A[2][2][l]);
-              B[0][2][l] = r * (A[0][1][l] * A[1][2][l] - A[0][2][l] * A[1][1][l]);
-              B[1][0][l] = r * (A[1][2][l] * A[2][0][l] - A[1][0][l] * A[2][2][l]);
-              B[1][1][l] = r * (A[0][0][l] * A[2][2][l] - A[0][2][l] * A[2][0][l]);
-              B[1][2][l] = r * (A[0][2][l] * A[1][0][l] - A[0][0][l] * A[1][2][l]);
-              B[2][0][l] = r * (A[1][0][l] * A[2][1][l] - A[1][1][l] * A[2][0][l]);
-              B[2][1][l] = r * (A[0][1][l] * A[2][0][l] - A[0][0][l] * A[2][1][l]);
-              B[2][2][l] = r * (A[0][0][l] * A[1][1][l] - A[0][1][l] * A[1][0][l]);
-            }
-        };
         alignas(64) double Ji[3][3][W];
-        inverse(Jn, detn, Ji);
+        inverse_batch(Jn, detn, Ji);
 
         alignas(64) double sig[6][W], old[6][W];
         for (unsigned int l = 0; l < W; ++l)
@@ -1097,11 +1343,8 @@ namespace anvil::Element
               for (unsigned int c = 0; c < 3; ++c)
                 for (unsigned int l = 0; l < W; ++l)
                   Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
-            for (unsigned int l = 0; l < W; ++l)
-              detm[l] = Jm[0][0][l] * (Jm[1][1][l] * Jm[2][2][l] - Jm[1][2][l] * Jm[2][1][l]) -
-                        Jm[0][1][l] * (Jm[1][0][l] * Jm[2][2][l] - Jm[1][2][l] * Jm[2][0][l]) +
-                        Jm[0][2][l] * (Jm[1][0][l] * Jm[2][1][l] - Jm[1][1][l] * Jm[2][0][l]);
-            inverse(Jm, detm, Jmi);
+            determinant_batch(Jm, detm);
+            inverse_batch(Jm, detm, Jmi);
             for (unsigned int a = 0; a < 3; ++a)
               for (unsigned int b = 0; b < 3; ++b)
                 for (unsigned int l = 0; l < W; ++l)

@@ -82,6 +82,19 @@ namespace anvil::Element
     double eroded_energy_increment = 0;
     /** Global ids of the elements (owned and ghost) eroded this step. */
     std::vector<unsigned long> eroded_elements;
+
+    /** Add the energies, erosions and first inverted element of @p r,
+        another part of the same step (its step is left to the caller). */
+    void add(const LoopResult &r)
+    {
+      internal_energy_increment += r.internal_energy_increment;
+      hourglass_energy_increment += r.hourglass_energy_increment;
+      viscous_energy_increment += r.viscous_energy_increment;
+      eroded_energy_increment += r.eroded_energy_increment;
+      eroded_elements.insert(eroded_elements.end(), r.eroded_elements.begin(), r.eroded_elements.end());
+      if (inverted_element < 0)
+        inverted_element = r.inverted_element;
+    }
   };
 
   /**
@@ -286,6 +299,10 @@ namespace anvil::Element
         8 elements in structure-of-arrays form, vectorised across them. */
     template <HourglassType H>
     LoopResult batched_loop(const double *x, const double *v, double dt, double *force);
+    /** The fast loop for fully integrated updated Lagrangian elements:
+        an element's 8 points are the lanes of a batch (the same arithmetic
+        as loop() with the points' material update batched). */
+    LoopResult full_batched_loop(const double *x, const double *v, double dt, double *force);
     /** Erode element @p e (with @p nq points) in this step's @p result. */
     void erode(unsigned int e, unsigned int nq, LoopResult &result);
 
