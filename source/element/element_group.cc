@@ -500,7 +500,7 @@ namespace anvil::Element
   {
     if (formulation == Formulation::updated_lagrangian && integration == Integration::full)
       {
-        // Point by point, without the per-element batch of the eight points.
+        // loop(), point by point, not full_batched_loop().
         batch_points    = false;
         const auto r    = compute_internal_forces(x, v, dt, force);
         batch_points    = true;
@@ -578,78 +578,6 @@ namespace anvil::Element
         double Jd_c[3][3];   // centroid velocity Jacobian, for hourglass control
         double max_grad2 = 0;
 
-        // Full integration, updated Lagrangian: the eight points of the
-        // element are one batch of the material's update (the same call
-        // the one-point loop makes across eight elements), so an inelastic
-        // model's elastic-trial fast path serves them too. This pass finds
-        // the rate of deformation and spin at each point, rotates the
-        // stresses and updates them; the loop below then only books the
-        // work and assembles. An element with an inverted point takes the
-        // point-by-point path (the loop below stops it).
-        static_assert(I == Integration::one_point || nq == W);
-        alignas(64) double batch_D[6][W], batch_old[6][W];
-        bool               batched = false;
-        if constexpr (F == Formulation::updated_lagrangian && I == Integration::full)
-          if (dt > 0 && batch_points)
-            {
-              alignas(64) double spin[3][W], sig[6][W];
-              batched = true;
-              for (unsigned int qq = 0; qq < W && batched; ++qq)
-                {
-                  const auto &dN       = tables.dN[qq];
-                  double      Jn[3][3] = {}, Jd[3][3] = {};
-                  for (unsigned int n = 0; n < 8; ++n)
-                    for (unsigned int a = 0; a < 3; ++a)
-                      for (unsigned int c = 0; c < 3; ++c)
-                        {
-                          Jn[a][c] += xe[n][a] * dN[n][c];
-                          Jd[a][c] += ve[n][a] * dN[n][c];
-                        }
-                  double Jm[3][3];
-                  for (unsigned int a = 0; a < 3; ++a)
-                    for (unsigned int c = 0; c < 3; ++c)
-                      Jm[a][c] = Jn[a][c] - 0.5 * dt * Jd[a][c];
-                  const double detm = det3(Jm);
-                  if (!(det3(Jn) > 0) || !(detm > 0))
-                    {
-                      batched = false;
-                      break;
-                    }
-                  double Jmi[3][3];
-                  inv3(Jm, detm, Jmi);
-                  double L[3][3];
-                  for (unsigned int a = 0; a < 3; ++a)
-                    for (unsigned int b = 0; b < 3; ++b)
-                      L[a][b] = Jd[a][0] * Jmi[0][b] + Jd[a][1] * Jmi[1][b] + Jd[a][2] * Jmi[2][b];
-                  batch_D[0][qq] = L[0][0];
-                  batch_D[1][qq] = L[1][1];
-                  batch_D[2][qq] = L[2][2];
-                  batch_D[3][qq] = 0.5 * (L[0][1] + L[1][0]);
-                  batch_D[4][qq] = 0.5 * (L[1][2] + L[2][1]);
-                  batch_D[5][qq] = 0.5 * (L[0][2] + L[2][0]);
-                  spin[0][qq]    = 0.5 * (L[0][1] - L[1][0]);
-                  spin[1][qq]    = 0.5 * (L[1][2] - L[2][1]);
-                  spin[2][qq]    = 0.5 * (L[0][2] - L[2][0]);
-                }
-              if (batched)
-                {
-                  double *hist[W];
-                  for (unsigned int qq = 0; qq < W; ++qq)
-                    {
-                      const double *s = &stresses[6 * (e * nq + qq)];
-                      for (unsigned int k = 0; k < 6; ++k)
-                        batch_old[k][qq] = sig[k][qq] = s[k];
-                      hist[qq] = n_hist ? &history[n_hist * (e * nq + qq)] : nullptr;
-                      rotate_stress(spin[0][qq], spin[1][qq], spin[2][qq], dt, sig[0][qq], sig[1][qq],
-                                sig[2][qq], sig[3][qq], sig[4][qq], sig[5][qq]);
-                    }
-                  material.update_cauchy_stress_batch(batch_D, spin, dt, sig, hist);
-                  for (unsigned int qq = 0; qq < W; ++qq)
-                    for (unsigned int k = 0; k < 6; ++k)
-                      stresses[6 * (e * nq + qq) + k] = sig[k][qq];
-                }
-            }
-
         for (unsigned int qq = 0; qq < nq; ++qq)
           {
             const unsigned int q = q0 + qq;
@@ -700,19 +628,7 @@ namespace anvil::Element
             if constexpr (F == Formulation::updated_lagrangian)
               {
                 jxw = detn * tables.weight[q];
-                if (batched)
-                  {
-                    // Updated above with the element's other points.
-                    double D[6], mid[6];
-                    for (unsigned int k = 0; k < 6; ++k)
-                      {
-                        D[k]   = batch_D[k][qq];
-                        mid[k] = 0.5 * (batch_old[k][qq] + sig[k]);
-                      }
-                    trD = D[0] + D[1] + D[2];
-                    e_int += contract(mid, D) * dt * jxw;
-                  }
-                else if (dt > 0)
+                if (dt > 0)
                   {
                     double Jm[3][3];
                     for (unsigned int a = 0; a < 3; ++a)
@@ -1004,12 +920,14 @@ namespace anvil::Element
   // velocities of its nodes are shared by all of them), so that the
   // Jacobians, the velocity gradients, the stress rotation and the
   // material update vectorise across the points, and the nodal forces
-  // across the nodes. The arithmetic and the order of every sum are
-  // loop<updated_lagrangian, full, none>'s with batch_points (the file is
-  // compiled without contraction to FMA), so the two give the same bits;
-  // tests/unit/fast_path compares this loop with the point-by-point one.
-  // An element with a point not positive (now or at mid-step) goes to
-  // loop(), which reports it.
+  // across the nodes. The kinematics' arithmetic and the order of every sum
+  // are those of loop<updated_lagrangian, full, none>, the reference (the
+  // file is compiled without contraction to FMA); the material update is
+  // the batched one, where the reference updates point by point.
+  // tests/unit/fast_path compares the two: the same bits for an elastic
+  // material, 4e-12 of the history for cracking concrete. An element with
+  // a point not positive (now or at mid-step) goes to loop(), which
+  // reports it.
   LoopResult ElementGroup::full_batched_loop(const double *x,
                                              const double *v,
                                              const double  dt,

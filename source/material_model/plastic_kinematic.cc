@@ -276,11 +276,21 @@ namespace anvil::MaterialModel
         rate[l]  = h[l][8];
       }
     // The back stress rotates with the material, like the stress (it is
-    // zero until the point first yields).
+    // zero until the point first yields): rotated across the batch when a
+    // point of it has yielded, kept in the lanes of those that have not
+    // (a select, so that the loop vectorises).
+    bool any_yielded = false;
     for (unsigned int l = 0; l < W; ++l)
-      if (eps_p[l] > 0)
-        Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, alpha[0][l], alpha[1][l],
-                                alpha[2][l], alpha[3][l], alpha[4][l], alpha[5][l]);
+      any_yielded |= (eps_p[l] > 0);
+    if (any_yielded)
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          double a[6] = {alpha[0][l], alpha[1][l], alpha[2][l], alpha[3][l], alpha[4][l], alpha[5][l]};
+          Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, a[0], a[1], a[2], a[3],
+                                    a[4], a[5]);
+          for (unsigned int k = 0; k < 6; ++k)
+            alpha[k][l] = eps_p[l] > 0 ? a[k] : alpha[k][l];
+        }
     for (unsigned int l = 0; l < W; ++l)
       {
         const double tr = D[0][l] + D[1][l] + D[2][l];
@@ -300,32 +310,38 @@ namespace anvil::MaterialModel
           rate[l] = std::sqrt(2. / 3. * dd);
         }
     const double Hk = law.kinematic_modulus();
+    // The relative stress xi = dev(sigma) - alpha of the trial, and its
+    // von Mises norm.
+    alignas(64) double xi[6][W], norm[W];
     for (unsigned int l = 0; l < W; ++l)
       {
         const double p = (s[0][l] + s[1][l] + s[2][l]) / 3.;
-        double       xi[6];
         for (unsigned int k = 0; k < 6; ++k)
-          xi[k] = s[k][l] - (k < 3 ? p : 0.) - alpha[k][l];
-        const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
-                          2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
-        const double norm = std::sqrt(xx);
-        const double q    = std::sqrt(1.5) * norm;
-        // The rate factor (a pow) only where the trial stress is beyond
-        // the static yield stress: R >= 1, so a point within it is elastic
-        // at any rate, and the elastic range pays no rate effects.
-        if (law.rate_effects && q > law.yield_stress(eps_p[l], 1.))
+          xi[k][l] = s[k][l] - (k < 3 ? p : 0.) - alpha[k][l];
+        norm[l] = std::sqrt(xi[0][l] * xi[0][l] + xi[1][l] * xi[1][l] + xi[2][l] * xi[2][l] +
+                            2. * (xi[3][l] * xi[3][l] + xi[4][l] * xi[4][l] + xi[5][l] * xi[5][l]));
+      }
+    // The rate factor (a pow) only where the trial stress is beyond the
+    // static yield stress: R >= 1, so a point within it is elastic at any
+    // rate, and the elastic range pays no rate effects.
+    if (law.rate_effects)
+      for (unsigned int l = 0; l < W; ++l)
+        if (std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], 1.))
           R[l] = law.rate_factor(rate[l]);
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        const double q      = std::sqrt(1.5) * norm[l];
         const double excess = q - law.yield_stress(eps_p[l], R[l]);
         const double dep    = excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
-        const double inv    = norm > 0 ? 1. / norm : 0.;
+        const double inv    = norm[l] > 0 ? 1. / norm[l] : 0.;
         const double a      = 2. * mu * std::sqrt(1.5) * dep * inv;
         const double b      = std::sqrt(2. / 3.) * Hk * dep * inv;
         double       w      = 0;
         for (unsigned int k = 0; k < 6; ++k)
           {
-            s[k][l] -= a * xi[k];
-            alpha[k][l] += b * xi[k];
-            w += (k < 3 ? 1. : 2.) * s[k][l] * std::sqrt(1.5) * dep * xi[k] * inv;
+            s[k][l] -= a * xi[k][l];
+            alpha[k][l] += b * xi[k][l];
+            w += (k < 3 ? 1. : 2.) * s[k][l] * std::sqrt(1.5) * dep * xi[k][l] * inv;
           }
         eps_p[l] += dep;
         work[l] += w;

@@ -393,8 +393,8 @@ namespace anvil::Element
     std::vector<double> strength_factors;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
-    /** Full integration: update an element's eight points as one batch
-        (false only in the reference loop). */
+    /** Full integration, updated Lagrangian: full_batched_loop() (false
+        only while compute_internal_forces_reference() runs loop()). */
     bool batch_points = true;
 
   public:
