@@ -346,12 +346,16 @@ namespace anvil::MaterialModel
         eps_p[l] += dep;
         work[l] += w;
       }
+    // A point that never yielded keeps its zeros: only the rate is new.
     for (unsigned int l = 0; l < W; ++l)
       {
-        for (unsigned int k = 0; k < 6; ++k)
-          h[l][k] = alpha[k][l];
-        h[l][6] = eps_p[l];
-        h[l][7] = work[l];
+        if (eps_p[l] > 0)
+          {
+            for (unsigned int k = 0; k < 6; ++k)
+              h[l][k] = alpha[k][l];
+            h[l][6] = eps_p[l];
+            h[l][7] = work[l];
+          }
         h[l][8] = rate[l];
       }
   }
