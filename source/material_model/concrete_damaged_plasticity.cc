@@ -1090,8 +1090,13 @@ namespace anvil::MaterialModel
           }
         if (elastic[l] != 0.)
           {
-            hl[i_damage]      = damage[l];
-            hl[i_dissipation] = dissipation[l];
+            // (An undamaged point inside its surfaces keeps d = 0 and its
+            // dissipation.)
+            if (!undamaged_and_inside)
+              {
+                hl[i_damage]      = damage[l];
+                hl[i_dissipation] = dissipation[l];
+              }
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = nominal[k][l];
           }
