@@ -894,13 +894,7 @@ namespace anvil::Element
         // LS-DYNA's measure for solids); the ratio of the two squared, the
         // element's distortion, is refreshed every few cycles (see
         // shape_factor).
-        const double rho_c = rho0 * reference_volume[e] / volume;
-        if (refresh_shape)
-          {
-            const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
-            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
-          }
-        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
+        min_dt2 = std::min(min_dt2, element_step2(e, xe, volume, max_grad2, dt_bulk2));
         min_dt2 = std::min(min_dt2, dt_hourglass2);
         result.viscous_energy_increment += energy_weight[e] * e_visc;
 
@@ -1110,14 +1104,7 @@ namespace anvil::Element
             erode(e, nq, result);
             continue;
           }
-        // Stable time step, as in loop().
-        const double rho_c = rho0 * reference_volume[e] / volume;
-        if (refresh_shape)
-          {
-            const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
-            shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
-          }
-        min_dt2 = std::min(min_dt2, 4. / max_grad2 * shape_factor[e] * rho_c / M * dt_bulk2);
+        min_dt2 = std::min(min_dt2, element_step2(e, xe, volume, max_grad2, dt_bulk2));
         result.viscous_energy_increment += energy_weight[e] * e_visc;
         for (unsigned int n = 0; n < 8; ++n)
           for (unsigned int a = 0; a < 3; ++a)
@@ -1125,6 +1112,26 @@ namespace anvil::Element
       }
     result.critical_time_step = std::sqrt(min_dt2);
     return result;
+  }
+
+
+  // The squared stable step of element @p e with nodal positions @p xe,
+  // current volume @p volume, max_q max_c |grad xi_c|^2 @p max_grad2 and
+  // the bulk viscosity's factor @p dt_bulk2 (loop() and
+  // full_batched_loop()); refreshes its shape factor every few cycles.
+  double ElementGroup::element_step2(const unsigned int e,
+                                     const double (&xe)[8][3],
+                                     const double volume,
+                                     const double max_grad2,
+                                     const double dt_bulk2)
+  {
+    const double rho_c = material.density() * reference_volume[e] / volume;
+    if (refresh_shape)
+      {
+        const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
+        shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
+      }
+    return 4. / max_grad2 * shape_factor[e] * rho_c / material.wave_modulus() * dt_bulk2;
   }
 
 

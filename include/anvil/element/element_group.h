@@ -303,6 +303,11 @@ namespace anvil::Element
         an element's 8 points are the lanes of a batch (the same arithmetic
         as loop() with the points' material update batched). */
     LoopResult full_batched_loop(const double *x, const double *v, double dt, double *force);
+    /** Squared stable step (L_e / c)^2 of element @p e from its nodal
+        positions @p xe, volume, max |grad xi|^2 and bulk viscosity factor;
+        refreshes its shape factor when due. */
+    double element_step2(unsigned int e, const double (&xe)[8][3], double volume, double max_grad2,
+                         double dt_bulk2);
     /** Erode element @p e (with @p nq points) in this step's @p result. */
     void erode(unsigned int e, unsigned int nq, LoopResult &result);
 
