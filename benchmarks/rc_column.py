@@ -8,7 +8,10 @@ time extrapolated to 150 ms at the measured step; and the memory on one
 process: the peak resident set per element, and the marginal memory per
 element (the production column's peak against the coarse column's, 2,700
 elements, over the difference in elements: what an element, its nodes and
-its share of the bars cost, without the executable and its libraries).
+its share of the bars cost, without the executable and its libraries),
+and of it what summary.csv accounts for: the triangulation with its p4est
+forest, the DoF handler, the nodal vectors and the element groups' state.
+`END_TIME_S = 0.15` runs the issue's whole 150 ms.
 
 Mesh study (--mesh-study): the bond-slip column at 20, 15 and 10 mm to the
 end criterion; prints peak and residual displacement of the impact point
@@ -103,7 +106,7 @@ end
               f"(wall x processes: {np * ns:.0f}); 150 ms at this step: "
               f"{s['wall_time_s'] * 0.150 / end_time / 60:.1f} min; {share}")
         if np == 1:
-            peak_kb, elements = run.peak_kb, s["elements"]
+            peak_kb, elements, accounted = run.peak_kb, s["elements"], s
     coarse_scene = os.path.join(top, "prm", "rc_column_impact", "rc_column_impact_coarse.prm")
     s, _, _ = run("memory_coarse", 1, """
 subsection Simulation
@@ -116,6 +119,14 @@ end
     print(f"  memory (np = 1): peak resident {peak_kb / 1024:.0f} MB, {1024 * peak_kb / elements:.0f} bytes per "
           f"element; marginal {marginal:.0f} bytes per element (against the coarse column's "
           f"{int(s['elements'])} elements, {run.peak_kb / 1024:.0f} MB)")
+    parts = [("triangulation (deal.II + p4est)", "memory_triangulation_bytes"),
+             ("DoF handler", "memory_dof_handler_bytes"), ("nodal vectors", "memory_nodal_vectors_bytes"),
+             ("element state", "memory_element_state_bytes")]
+    if all(key in accounted for _, key in parts):
+        held = sum(accounted[key] for _, key in parts)
+        print("  memory held (np = 1, summary.csv), bytes per element: " +
+              ", ".join(f"{name} {accounted[key] / elements:.0f}" for name, key in parts) +
+              f"; together {held / elements:.0f}, the rest of the marginal {marginal - held / elements:.0f}")
 else:
     print("rc_column: mesh study, bond-slip column to the end criterion")
     previous = None

@@ -22,7 +22,9 @@ except ImportError:
     sys.exit(3)
 
 # Quantities that describe the run, not its result.
-BOOKKEEPING = {"exit_status", "run_wall_time_s", "wall_time_s", "processes", "elements", "ended_by_criterion"}
+BOOKKEEPING = {"exit_status", "run_wall_time_s", "wall_time_s", "processes", "elements", "ended_by_criterion",
+               "memory_triangulation_bytes", "memory_dof_handler_bytes", "memory_nodal_vectors_bytes",
+               "memory_element_state_bytes"}
 
 
 def number(s):

@@ -33,6 +33,19 @@ namespace anvil::Postprocess
 
     void end_of_run(const double wall_time) override
     {
+      // The memory the mesh and the solver's state hold on all processes
+      // (deal.II's own accounting for the triangulation with its p4est
+      // forest, the DoF handler and the nodal vectors; the element groups'
+      // arrays): what an element costs beyond the executable.
+      double memory[4] = {double(get_triangulation().memory_consumption()),
+                          double(get_dof_handler().memory_consumption()),
+                          double(get_reference_position().memory_consumption() +
+                                 get_position().memory_consumption() + get_velocity().memory_consumption() +
+                                 get_force().memory_consumption() + get_mass().memory_consumption()),
+                          0.};
+      for (const auto &group : get_element_groups())
+        memory[3] += group.memory_per_element() * group.n_elements();
+      Utilities::MPI::sum(ArrayView<const double>(memory, 4), get_mpi_communicator(), ArrayView<double>(memory, 4));
       if (!is_root())
         return;
       const auto &summary             = get_summary();
@@ -98,6 +111,10 @@ namespace anvil::Postprocess
         for (const auto *family : get_families())
           family->write_summary(out);
         out << "elements," << get_triangulation().n_global_active_cells() << '\n';
+        out << "memory_triangulation_bytes," << memory[0] << '\n';
+        out << "memory_dof_handler_bytes," << memory[1] << '\n';
+        out << "memory_nodal_vectors_bytes," << memory[2] << '\n';
+        out << "memory_element_state_bytes," << memory[3] << '\n';
         out << "processes," << Utilities::MPI::n_mpi_processes(get_mpi_communicator()) << '\n';
       }
       write_atomically(get_output_directory() + "/summary.csv", out.str());

@@ -89,6 +89,16 @@ namespace anvil::Rebar
                       "concrete's element length set a step 0.77 times the "
                       "concrete's; doc/accuracy.md measures what scaling them "
                       "costs in accuracy. 0: off. Units: s.");
+    prm.declare_entry("Subcycling", "false", Patterns::Bool(),
+                      "Bond-slip bars: advance the bars' own nodes in substeps of "
+                      "their own stable step inside the scene's step, on the host "
+                      "points interpolated linearly across it (the host gets the "
+                      "bond reactions of the step's ends), so that bars shorter than "
+                      "the host's elements no longer set the scene's step. A step "
+                      "takes the fewest substeps that keep each within the bars' "
+                      "stable step times 'Time step safety factor'; no mass is "
+                      "added. doc/accuracy.md measures what it changes. false: the "
+                      "bars' stable step bounds the scene's.");
     prm.declare_entry("Pull velocity", "0, 0, 0", Patterns::List(Patterns::Double(), 3, 3),
                       "Bond-slip: velocity imposed on the last node of every bar from "
                       "t = 0 (a pull-out test); zero: none. Units: m/s.");
@@ -134,6 +144,7 @@ namespace anvil::Rebar
     slip_at_peak = prm.get_double("Slip at bond strength");
     damage_rate  = prm.get_double("Bond damage rate");
     mass_scaling_step = prm.get_double("Mass scaling time step");
+    subcycling        = prm.get_bool("Subcycling");
     {
       const Point<3> v = point("Pull velocity");
       pull_velocity    = v;
@@ -144,6 +155,9 @@ namespace anvil::Rebar
     if (mass_scaling_step > 0 && !bond_slip)
       throw InputError(at + "'Mass scaling time step' needs 'Coupling = bond-slip' (perfectly "
                             "bonded bars carry no mass of their own: it is the host's)");
+    if (subcycling && !bond_slip)
+      throw InputError(at + "'Subcycling' needs 'Coupling = bond-slip' (perfectly bonded "
+                            "bars move with the host's step: they have no nodes of their own)");
     if (pulled && !bond_slip)
       throw InputError(at + "'Pull velocity' needs 'Coupling = bond-slip' (perfectly bonded "
                             "bars follow the host)");

@@ -442,10 +442,7 @@ namespace anvil::Rebar
     Energies         &energies         = get_energies();
     const MPI_Comm    mpi_communicator = get_mpi_communicator();
     double dt_crit = 1e300;
-    // The host points of the share's nodes in own and ghost cells; to the
-    // exchange, each own node's position (bond-slip: the bar's own node).
-    if (partitioned)
-      exchange.zero_out_ghost_values();
+    // The host points of the share's nodes in own and ghost cells.
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
         auto       &T  = bars[r];
@@ -463,33 +460,35 @@ namespace anvil::Rebar
               for (unsigned int d = 0; d < 3; ++d)
                 xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
           }
-        if (partitioned)
+      }
+    work_done.assign(2 * bars.size() + 1, 0.);
+    own_step.resize(bars.size(), 1e300);
+    if (dt > 0)
+      subcycle();
+    // To the exchange, each own node's position (bond-slip: the bar's own
+    // node).
+    if (partitioned)
+      {
+        exchange.zero_out_ghost_values();
+        for (unsigned int r = 0; r < bars.size(); ++r)
           {
-            const auto &own = layouts[r].bond_slip ? T.xs : xr;
+            const auto &T   = bars[r];
+            const auto &S   = shares[r];
+            const auto &own = layouts[r].bond_slip ? T.xs : T.x;
             for (unsigned int q = 0; q < S.own_nodes.size(); ++q)
               for (unsigned int d = 0; d < 3; ++d)
                 exchange.local_element(S.own_slot[q] + d) = own[3 * S.own_nodes[q] + d];
           }
+        exchange.update_ghost_values();
       }
-    if (partitioned)
-      exchange.update_ghost_values();
-    work_done.assign(2 * bars.size(), 0.);
+    bool subcycled = false;
     for (unsigned int r = 0; r < bars.size(); ++r)
       {
-        auto                 &T        = bars[r];
-        const auto           &S        = shares[r];
-        const auto           &material = *layouts[r].material;
-        const double          A        = layouts[r].area();
-        const double          c        = std::sqrt(material.youngs_modulus() / material.density());
-        const unsigned int    n        = T.X.size();
-        // The node positions are in T.x (the output's too): no
-        // allocation per step.
-        auto &xr = T.x;
-        auto &fr = T.nodal_force;
-        for (const unsigned int i : S.nodes)
-          for (unsigned int d = 0; d < 3; ++d)
-            fr[3 * i + d] = 0;
-        const bool slip = layouts[r].bond_slip;
+        auto       &T    = bars[r];
+        const auto &S    = shares[r];
+        auto       &xr   = T.x;
+        auto       &fr   = T.nodal_force;
+        const bool  slip = layouts[r].bond_slip;
         if (partitioned)
           {
             auto &into = slip ? T.xs : xr;
@@ -507,129 +506,26 @@ namespace anvil::Rebar
               for (unsigned int d = 0; d < 3; ++d)
                 xr[3 * i + d] = T.xs[3 * i + d];
           }
-        double work = 0;
-        for (unsigned int e = 0; e < S.elements.size(); ++e)
+        // A subcycled layout's histories advance by its substep.
+        const bool   sub = layouts[r].subcycling;
+        const double h   = sub ? (dt > 0 ? T.substep : 0.) : dt;
+        const double step = evaluate(r, h, xr);
+        if (sub)
           {
-            const unsigned int k = S.elements[e];
-            const unsigned int a = T.elements[k][0], b = T.elements[k][1];
-            Tensor<1, 3>       d;
-            for (unsigned int q = 0; q < 3; ++q)
-              d[q] = xr[3 * b + q] - xr[3 * a + q];
-            const double l = d.norm();
-            if (dt > 0)
-              {
-                double *h     = T.n_history ? &T.history[T.n_history * k] : nullptr;
-                T.stress[k]   = material.update_uniaxial_stress(std::log(l / T.length[k]), dt, T.stress[k], h);
-                const double N = T.stress[k] * A * T.reference_length[k] / l;
-                const double w = 0.5 * (T.force[k] + N) * (l - T.length[k]);
-                T.energy[k] += w;
-                if (S.own_element[e])
-                  work += w;
-                T.force[k]  = N;
-                T.length[k] = l;
-              }
-            const Tensor<1, 3> f = (T.force[k] / l) * d;
-            for (unsigned int q = 0; q < 3; ++q)
-              {
-                fr[3 * a + q] += f[q];
-                fr[3 * b + q] -= f[q];
-              }
-            dt_crit = std::min(dt_crit, T.step_factor[k] * l / c);
+            own_step[r] = step;
+            subcycled   = true;
           }
-        if (partitioned)
-          work_done[2 * r] = work;
         else
-          energies.internal += work;
+          dt_crit = std::min(dt_crit, step);
         if (slip)
-          {
-            // @sect4{Bond-slip, seed Eq. (68)}
-            // Along the bar: slip S = (x_bar - x_host) . t with t the bar's
-            // current tangent at the node; bond stress by the law below,
-            // force tau pi d l_trib; across the bar the node is tied to the
-            // host by a spring of the same stiffness G_s pi d l_trib. The
-            // reaction goes to the host through the shape functions; the
-            // work of the bond forces is the 'bond' energy.
-            const auto  &L       = layouts[r];
-            const double tau_max = L.bond_modulus * L.slip_at_peak;
-            const auto &trib    = T.tributary;
-            auto       &tangent = T.tangent;
-            tangent.resize(n);
-            for (const unsigned int i : S.nodes)
-              tangent[i] = Tensor<1, 3>();
-            for (const unsigned int k : S.elements)
+          // The bars' nodes keep their forces; the host gets the bond
+          // reactions, -f, through the shape functions.
+          for (const unsigned int i : S.nodes)
+            for (unsigned int q = 0; q < 3; ++q)
               {
-                const unsigned int a = T.elements[k][0], b = T.elements[k][1];
-                Tensor<1, 3>       dd;
-                for (unsigned int q = 0; q < 3; ++q)
-                  dd[q] = xr[3 * b + q] - xr[3 * a + q];
-                dd /= dd.norm();
-                tangent[a] += dd;
-                tangent[b] += dd;
+                T.fs[3 * i + q] = fr[3 * i + q];
+                fr[3 * i + q]   = -T.bond_force[3 * i + q];
               }
-            const double perimeter = 3.14159265358979323846 * L.diameter;
-            double       bond_work = 0;
-            if (T.x_bond_old.empty())
-              T.x_bond_old.assign(3 * n, 0.);
-            for (const unsigned int i : S.relevant_nodes)
-              {
-                const Tensor<1, 3> t = tangent[i] / tangent[i].norm();
-                Tensor<1, 3>       u;
-                for (unsigned int q = 0; q < 3; ++q)
-                  u[q] = xr[3 * i + q] - T.xh[3 * i + q];
-                const double S = u * t;
-                if (dt > 0)
-                  {
-                    // Elastic predictor from the plastic slip; beyond the
-                    // (softening) strength tau_max exp(-h D) the slip goes
-                    // plastic and D accumulates it. Unloading follows G_s.
-                    const double trial = L.bond_modulus * (S - T.plastic_slip[i]);
-                    const double limit = tau_max * std::exp(-L.damage_rate * T.damage[i]);
-                    double       tau   = trial;
-                    if (std::abs(trial) > limit)
-                      {
-                        tau                   = trial > 0 ? limit : -limit;
-                        const double dsp      = S - T.plastic_slip[i] - tau / L.bond_modulus;
-                        T.plastic_slip[i] += dsp;
-                        T.damage[i] += std::abs(dsp);
-                      }
-                    T.bond_stress[i] = tau;
-                    T.slip[i]        = S;
-                  }
-                const double       k_t = L.bond_modulus * perimeter * trib[i];
-                const Tensor<1, 3> f   = -(T.bond_stress[i] * perimeter * trib[i]) * t - k_t * (u - S * t);
-                // Work done on the bond over the step (trapezoidal rule).
-                Tensor<1, 3> f_old, du;
-                for (unsigned int q = 0; q < 3; ++q)
-                  {
-                    f_old[q] = T.bond_force[3 * i + q];
-                    T.bond_force[3 * i + q] = f[q];
-                  }
-                if (dt > 0 && T.host_owned[i])
-                  {
-                    for (unsigned int q = 0; q < 3; ++q)
-                      du[q] = u[q] - T.x_bond_old[3 * i + q];
-                    bond_work -= 0.5 * (f_old + f) * du;
-                  }
-                for (unsigned int q = 0; q < 3; ++q)
-                  {
-                    T.x_bond_old[3 * i + q] = u[q];
-                    fr[3 * i + q] += f[q];
-                  }
-                dt_crit = std::min(dt_crit, 2. * std::sqrt(T.ms[i] / (2. * k_t)));
-              }
-            if (partitioned)
-              work_done[2 * r + 1] = bond_work;
-            else
-              energies.bond += bond_work;
-            // The bars' nodes keep their forces; the host gets the bond
-            // reactions, -f, through the shape functions.
-            for (const unsigned int i : S.nodes)
-              for (unsigned int q = 0; q < 3; ++q)
-                {
-                  T.fs[3 * i + q] = fr[3 * i + q];
-                  fr[3 * i + q]   = -T.bond_force[3 * i + q];
-                }
-          }
         for (const unsigned int i : S.relevant_nodes)
           {
             const auto N = Trusses::shape_values(T.xi[i]);
@@ -639,18 +535,249 @@ namespace anvil::Rebar
                   force.local_element(T.host_dofs[i][I] + d) += N[I] * fr[3 * i + d];
           }
       }
-    // Each process booked the work of its own elements and bonds.
+    // Each process booked the work of its own elements and bonds (and, in
+    // substeps, the pull's and gravity's on its own nodes).
     if (partitioned)
       {
         Utilities::MPI::sum(work_done, mpi_communicator, work_done);
         for (unsigned int r = 0; r < bars.size(); ++r)
           {
             energies.internal += work_done[2 * r];
-            if (layouts[r].bond_slip)
-              energies.bond += work_done[2 * r + 1];
+            energies.bond += work_done[2 * r + 1];
           }
+        energies.external_work += work_done.back();
+        if (subcycled)
+          Utilities::MPI::min(own_step, mpi_communicator, own_step);
       }
     return dt_crit;
+  }
+
+
+  double Reinforcement::evaluate(const unsigned int r, const double dt, const std::vector<double> &xb)
+  {
+    double element_work = 0, bond_work = 0;
+    auto               &T        = bars[r];
+    const auto         &S        = shares[r];
+    const auto         &material = *layouts[r].material;
+    const double        A        = layouts[r].area();
+    const double        c        = std::sqrt(material.youngs_modulus() / material.density());
+    auto               &fr       = T.nodal_force;
+    double              dt_crit  = 1e300;
+    for (const unsigned int i : S.nodes)
+      for (unsigned int d = 0; d < 3; ++d)
+        fr[3 * i + d] = 0;
+    for (unsigned int e = 0; e < S.elements.size(); ++e)
+      {
+        const unsigned int k = S.elements[e];
+        const unsigned int a = T.elements[k][0], b = T.elements[k][1];
+        Tensor<1, 3>       d;
+        for (unsigned int q = 0; q < 3; ++q)
+          d[q] = xb[3 * b + q] - xb[3 * a + q];
+        const double l = d.norm();
+        if (dt > 0)
+          {
+            double *h     = T.n_history ? &T.history[T.n_history * k] : nullptr;
+            T.stress[k]   = material.update_uniaxial_stress(std::log(l / T.length[k]), dt, T.stress[k], h);
+            const double N = T.stress[k] * A * T.reference_length[k] / l;
+            const double w = 0.5 * (T.force[k] + N) * (l - T.length[k]);
+            T.energy[k] += w;
+            if (S.own_element[e])
+              element_work += w;
+            T.force[k]  = N;
+            T.length[k] = l;
+          }
+        const Tensor<1, 3> f = (T.force[k] / l) * d;
+        for (unsigned int q = 0; q < 3; ++q)
+          {
+            fr[3 * a + q] += f[q];
+            fr[3 * b + q] -= f[q];
+          }
+        dt_crit = std::min(dt_crit, T.step_factor[k] * l / c);
+      }
+    if (layouts[r].bond_slip)
+      dt_crit = std::min(dt_crit, evaluate_bond(r, dt, xb, bond_work));
+    // This process's share of the work: summed over the processes at the
+    // end of add_forces().
+    if (partitioned)
+      {
+        work_done[2 * r] += element_work;
+        work_done[2 * r + 1] += bond_work;
+      }
+    else
+      {
+        get_energies().internal += element_work;
+        get_energies().bond += bond_work;
+      }
+    return dt_crit;
+  }
+
+
+  double Reinforcement::evaluate_bond(const unsigned int r, const double dt, const std::vector<double> &xb,
+                                      double &bond_work)
+  {
+    auto              &T       = bars[r];
+    const auto        &S       = shares[r];
+    const unsigned int n       = T.X.size();
+    auto              &fr      = T.nodal_force;
+    double             dt_crit = 1e300;
+    // @sect4{Bond-slip, seed Eq. (68)}
+    // Along the bar: slip S = (x_bar - x_host) . t with t the bar's
+    // current tangent at the node; bond stress by the law below,
+    // force tau pi d l_trib; across the bar the node is tied to the
+    // host by a spring of the same stiffness G_s pi d l_trib. The
+    // reaction goes to the host through the shape functions; the
+    // work of the bond forces is the 'bond' energy.
+    const auto  &L       = layouts[r];
+    const double tau_max = L.bond_modulus * L.slip_at_peak;
+    const auto  &trib    = T.tributary;
+    auto        &tangent = T.tangent;
+    tangent.resize(n);
+    for (const unsigned int i : S.nodes)
+      tangent[i] = Tensor<1, 3>();
+    for (const unsigned int k : S.elements)
+      {
+        const unsigned int a = T.elements[k][0], b = T.elements[k][1];
+        Tensor<1, 3>       dd;
+        for (unsigned int q = 0; q < 3; ++q)
+          dd[q] = xb[3 * b + q] - xb[3 * a + q];
+        dd /= dd.norm();
+        tangent[a] += dd;
+        tangent[b] += dd;
+      }
+    const double perimeter = 3.14159265358979323846 * L.diameter;
+    if (T.x_bond_old.empty())
+      T.x_bond_old.assign(3 * n, 0.);
+    for (const unsigned int i : S.relevant_nodes)
+      {
+        const Tensor<1, 3> t = tangent[i] / tangent[i].norm();
+        Tensor<1, 3>       u;
+        for (unsigned int q = 0; q < 3; ++q)
+          u[q] = xb[3 * i + q] - T.xh[3 * i + q];
+        const double S = u * t;
+        if (dt > 0)
+          {
+            // Elastic predictor from the plastic slip; beyond the
+            // (softening) strength tau_max exp(-h D) the slip goes
+            // plastic and D accumulates it. Unloading follows G_s.
+            const double trial = L.bond_modulus * (S - T.plastic_slip[i]);
+            const double limit = tau_max * std::exp(-L.damage_rate * T.damage[i]);
+            double       tau   = trial;
+            if (std::abs(trial) > limit)
+              {
+                tau                   = trial > 0 ? limit : -limit;
+                const double dsp      = S - T.plastic_slip[i] - tau / L.bond_modulus;
+                T.plastic_slip[i] += dsp;
+                T.damage[i] += std::abs(dsp);
+              }
+            T.bond_stress[i] = tau;
+            T.slip[i]        = S;
+          }
+        const double       k_t = L.bond_modulus * perimeter * trib[i];
+        const Tensor<1, 3> f   = -(T.bond_stress[i] * perimeter * trib[i]) * t - k_t * (u - S * t);
+        // Work done on the bond over the step (trapezoidal rule).
+        Tensor<1, 3> f_old, du;
+        for (unsigned int q = 0; q < 3; ++q)
+          {
+            f_old[q] = T.bond_force[3 * i + q];
+            T.bond_force[3 * i + q] = f[q];
+          }
+        if (dt > 0 && T.host_owned[i])
+          {
+            for (unsigned int q = 0; q < 3; ++q)
+              du[q] = u[q] - T.x_bond_old[3 * i + q];
+            bond_work -= 0.5 * (f_old + f) * du;
+          }
+        for (unsigned int q = 0; q < 3; ++q)
+          {
+            T.x_bond_old[3 * i + q] = u[q];
+            fr[3 * i + q] += f[q];
+          }
+        dt_crit = std::min(dt_crit, 2. * std::sqrt(T.ms[i] / (2. * k_t)));
+      }
+    return dt_crit;
+  }
+
+
+  // @sect3{Subcycling of the bars}
+  //
+  // A subcycled bond-slip layout takes m substeps h = dt / m in the
+  // scene's step dt (m chosen in update_velocity() from the bars' own
+  // stable step). Substep 0 goes with the host's update (update_velocity,
+  // update_position); substeps 1 ... m - 1 follow here, once the host has
+  // reached the step's end: the host points the bond ties the bars to are
+  // interpolated linearly between their places at the start and at the end
+  // of the step, x_h(k h) = x_h^n + (k / m) (x_h^{n+1} - x_h^n), the
+  // bars' elements and bond are evaluated there, and the bars' own nodes
+  // advance by central differences with h. The host gets the bond reactions
+  // of the step's ends only (the evaluation in add_forces()), as in the
+  // subcycling of Belytschko, Yen and Mullen (1979) with the host as the
+  // large-step partition; the work of the bond on the bars' path is booked
+  // substep by substep. On several processes each substep exchanges the
+  // halo of the bars' own nodes, as the step does.
+  void Reinforcement::subcycle()
+  {
+    unsigned int m = 1;
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      if (layouts[r].subcycling)
+        m = std::max(m, bars[r].substeps);
+    if (m < 2)
+      return;
+    Energies   &energies = get_energies();
+    const auto &gravity  = get_gravity();
+    for (unsigned int r = 0; r < bars.size(); ++r)
+      if (layouts[r].subcycling && bars[r].substeps > 1)
+        {
+          auto &T = bars[r];
+          T.xh_start.resize(3 * T.X.size());
+          for (const unsigned int i : shares[r].relevant_nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              T.xh_start[3 * i + d] = T.xh[3 * i + d];
+        }
+    double external = 0;
+    for (unsigned int k = 1; k < m; ++k)
+      {
+        if (partitioned)
+          {
+            exchange.zero_out_ghost_values();
+            for (unsigned int r = 0; r < bars.size(); ++r)
+              if (layouts[r].subcycling && bars[r].substeps > k)
+                for (unsigned int q = 0; q < shares[r].own_nodes.size(); ++q)
+                  for (unsigned int d = 0; d < 3; ++d)
+                    exchange.local_element(shares[r].own_slot[q] + d) =
+                      bars[r].xs[3 * shares[r].own_nodes[q] + d];
+            exchange.update_ghost_values();
+          }
+        for (unsigned int r = 0; r < bars.size(); ++r)
+          if (layouts[r].subcycling && bars[r].substeps > k)
+            {
+              auto        &T = bars[r];
+              const auto  &S = shares[r];
+              const double h = T.substep, s = double(k) / T.substeps;
+              for (unsigned int q = 0; q < S.halo.size(); ++q)
+                for (unsigned int d = 0; d < 3; ++d)
+                  T.xs[3 * S.halo[q] + d] = exchange.local_element(S.halo_slot[q] + d);
+              for (const unsigned int i : S.relevant_nodes)
+                for (unsigned int d = 0; d < 3; ++d)
+                  T.xh[3 * i + d] = T.xh_start[3 * i + d] + s * (T.x[3 * i + d] - T.xh_start[3 * i + d]);
+              evaluate(r, h, T.xs);
+              for (const unsigned int i : S.nodes)
+                for (unsigned int q = 0; q < 3; ++q)
+                  T.fs[3 * i + q] = T.nodal_force[3 * i + q];
+              double kinetic = 0, power = 0;
+              advance_velocity(r, h, h, kinetic, external, power);
+              for (const unsigned int i : S.own_nodes)
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    if (gravity.norm() > 0)
+                      external += T.ms[i] * gravity[d] * h * T.vs[3 * i + d];
+                    T.xs[3 * i + d] += h * T.vs[3 * i + d];
+                  }
+            }
+      }
+    if (partitioned)
+      work_done.back() += external;
+    else
+      energies.external_work += external;
   }
 
 
@@ -789,50 +916,88 @@ namespace anvil::Rebar
   // the host nodes; a pulled node keeps its velocity, and the work of the
   // force that holds it is external work. The energy terms of the own
   // nodes are summed over the processes.
+  void Reinforcement::advance_velocity(const unsigned int r, const double h_previous, const double h,
+                                       double &kinetic, double &work, double &power)
+  {
+    const auto  &gravity = get_gravity();
+    auto        &T       = bars[r];
+    const double dt_avg  = 0.5 * (h_previous + h);
+    for (const unsigned int i : shares[r].own_nodes)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          const unsigned int j     = 3 * i + d;
+          const double       v_old = T.vs[j];
+          const double       f     = T.fs[j] + T.ms[i] * gravity[d];
+          // As for the host nodes (Simulator::update_velocity): the
+          // kinetic energy of the variable-step identity, and the
+          // pull reaction's work by the trapezoidal rule.
+          double f_total = f;
+          if (T.pulled[i])
+            {
+              const double vp = layouts[r].pull_velocity[d];
+              const double reaction =
+                dt_avg > 0 ? T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg : 0.;
+              work += 0.5 * (T.pull_reaction[j] + reaction) * v_old * h_previous;
+              T.pull_reaction[j] = reaction;
+              f_total += reaction;
+              T.vs[j] = vp;
+            }
+          else
+            T.vs[j] += dt_avg * f / T.ms[i];
+          kinetic += 0.5 * v_old * (T.ms[i] * v_old + h_previous * f_total);
+          power += f_total * (T.vs[j] - v_old);
+        }
+  }
+
+
+  // @sect3{The bars' own nodes (bond-slip)}
+  //
+  // Each process advances its own nodes by the same central differences as
+  // the host nodes; a pulled node keeps its velocity, and the work of the
+  // force that holds it is external work. The energy terms of the own
+  // nodes are summed over the processes. A subcycled layout advances by its
+  // first substep h = dt / m here, m the fewest substeps that keep h within
+  // the safety factor times the bars' own stable step; its step-change
+  // term, 1/4 (h - h_previous) F dv, is booked here (the host's by the
+  // simulator, with dt).
   void Reinforcement::update_velocity(const double dt_previous, const double dt, OwnMotion &motion)
   {
-    const auto &gravity = get_gravity();
-    double      sums[3] = {0, 0, 0};
-    double     &kinetic = partitioned ? sums[0] : motion.kinetic;
-    double     &work    = partitioned ? sums[1] : motion.work;
-    double     &power   = partitioned ? sums[2] : motion.power;
-    const double dt_avg = 0.5 * (dt_previous + dt);
+    double sums[4] = {0, 0, 0, 0};
+    double &kinetic = partitioned ? sums[0] : motion.kinetic;
+    double &work    = partitioned ? sums[1] : motion.work;
+    double &power   = partitioned ? sums[2] : motion.power;
+    double &sub_power = sums[3];
+    bool    subcycled = false;
     for (unsigned int r = 0; r < bars.size(); ++r)
       if (layouts[r].bond_slip)
         {
-          auto &T = bars[r];
-          for (const unsigned int i : shares[r].own_nodes)
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                const unsigned int j     = 3 * i + d;
-                const double       v_old = T.vs[j];
-                const double       f     = T.fs[j] + T.ms[i] * gravity[d];
-                // As for the host nodes (Simulator::update_velocity): the
-                // kinetic energy of the variable-step identity, and the
-                // pull reaction's work by the trapezoidal rule.
-                double f_total = f;
-                if (T.pulled[i])
-                  {
-                    const double vp = layouts[r].pull_velocity[d];
-                    const double reaction =
-                      dt_avg > 0 ? T.ms[i] * (vp - (v_old + dt_avg * f / T.ms[i])) / dt_avg : 0.;
-                    work += 0.5 * (T.pull_reaction[j] + reaction) * v_old * dt_previous;
-                    T.pull_reaction[j] = reaction;
-                    f_total += reaction;
-                    T.vs[j] = vp;
-                  }
-                else
-                  T.vs[j] += dt_avg * f / T.ms[i];
-                kinetic += 0.5 * v_old * (T.ms[i] * v_old + dt_previous * f_total);
-                power += f_total * (T.vs[j] - v_old);
-              }
+          if (!layouts[r].subcycling)
+            {
+              advance_velocity(r, dt_previous, dt, kinetic, work, power);
+              continue;
+            }
+          auto        &T      = bars[r];
+          const double h_prev = dt_previous > 0 ? T.substep : 0.;
+          const double limit  = get_time_step_factor() * own_step[r];
+          T.substeps = dt > 0 ? static_cast<unsigned int>(std::max(1., std::ceil(dt / limit * (1. - 1e-12)))) : 1;
+          const double h = dt / T.substeps;
+          double       p = 0;
+          advance_velocity(r, h_prev, h, kinetic, work, p);
+          sub_power += 0.25 * (h - h_prev) * p;
+          T.substep = h;
+          subcycled = true;
         }
     if (partitioned)
       {
-        Utilities::MPI::sum(ArrayView<const double>(sums, 3), get_mpi_communicator(), ArrayView<double>(sums, 3));
+        Utilities::MPI::sum(ArrayView<const double>(sums, 4), get_mpi_communicator(), ArrayView<double>(sums, 4));
         motion.kinetic += sums[0];
         motion.work += sums[1];
         motion.power += sums[2];
+      }
+    if (subcycled)
+      {
+        get_energies().step_change += pending_step_change;
+        pending_step_change = dt > 0 ? sub_power : 0.;
       }
   }
 
@@ -846,13 +1011,14 @@ namespace anvil::Rebar
     for (unsigned int r = 0; r < bars.size(); ++r)
       if (layouts[r].bond_slip)
         {
-          auto &T = bars[r];
+          auto        &T = bars[r];
+          const double h = layouts[r].subcycling ? T.substep : dt;
           for (const unsigned int i : shares[r].own_nodes)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 if (gravity.norm() > 0)
-                  work += T.ms[i] * gravity[d] * dt * T.vs[3 * i + d];
-                T.xs[3 * i + d] += dt * T.vs[3 * i + d];
+                  work += T.ms[i] * gravity[d] * h * T.vs[3 * i + d];
+                T.xs[3 * i + d] += h * T.vs[3 * i + d];
               }
         }
     if (partitioned && gravity.norm() > 0)
@@ -948,10 +1114,11 @@ namespace anvil::Rebar
         {
           const unsigned int host = body_index(layouts[r].host);
           const auto        &T    = bars[r];
+          const double        h    = layouts[r].subcycling ? T.substep : dt;
           for (const unsigned int i : shares[r].own_nodes)
             for (unsigned int j = 3 * i; j < 3 * i + 3; ++j)
               sum[3 * host + j % 3] +=
-                T.ms[j / 3] * T.vs[j] - 0.5 * dt * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
+                T.ms[j / 3] * T.vs[j] - 0.5 * h * (T.fs[j] + T.ms[j / 3] * gravity[j % 3]);
         }
     if (partitioned)
       {
@@ -969,8 +1136,12 @@ namespace anvil::Rebar
     std::size_t trusses = 0;
     for (const auto &r : bars)
       trusses += r.elements.size();
+    unsigned int subcycled = 0;
+    for (const auto &layout : layouts)
+      subcycled += layout.subcycling;
     return std::to_string(trusses) + " bar elements in " + std::to_string(bars.size()) + " rebar set" +
-           (bars.size() == 1 ? "" : "s");
+           (bars.size() == 1 ? "" : "s") +
+           (subcycled == 0 ? "" : " (" + std::to_string(subcycled) + " subcycled in substeps of their own stable step)");
   }
 
 

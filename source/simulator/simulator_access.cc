@@ -110,6 +110,12 @@ namespace anvil
     return simulator.time;
   }
 
+
+  double SimulatorAccess::get_time_step_factor() const
+  {
+    return simulator.time_step_factor;
+  }
+
   unsigned int SimulatorAccess::get_step_number() const
   {
     return simulator.step_number;

@@ -67,6 +67,9 @@ namespace anvil::Rebar
     /** Bond-slip: the smallest step the bar elements may set; elements
         below it get nonstructural mass (selective mass scaling); 0: off. */
     double mass_scaling_step = 0;
+    /** Bond-slip: the bars advance in substeps of their own stable step
+        inside the scene's step (Reinforcement::subcycle()). */
+    bool subcycling = false;
     /** Velocity imposed on the last node of every bar (pull-out tests). */
     dealii::Tensor<1, 3> pull_velocity;
     bool                 pulled = false;
@@ -121,6 +124,11 @@ namespace anvil::Rebar
     /** Per element: sqrt of its mass factor (1, or more where the bars'
         mass is scaled), the factor on its stable step L / c. */
     std::vector<double> step_factor;
+    /** Subcycling: the substeps of the scene's last step and their size
+        h (s), and the host points of the last evaluation (work array). */
+    unsigned int        substeps = 1;
+    double              substep  = 0;
+    std::vector<double> xh_start;
     /** The nonstructural mass added by mass scaling. Units: kg. */
     double added_mass = 0;
     std::vector<double>       plastic_slip, damage, bond_stress, slip, bond_force;
@@ -153,7 +161,8 @@ namespace anvil::Rebar
     void serialize(StateArchive &ar)
     {
       ar &length &stress &force &energy &history &x &xs &vs &fs &xh &plastic_slip &damage &bond_stress
-        &slip &bond_force &pulled &pull_reaction &nodal_force &tangent &x_bond_old &pvd_records;
+        &slip &bond_force &pulled &pull_reaction &nodal_force &tangent &x_bond_old &pvd_records &substeps
+        &substep;
     }
   };
 } // namespace anvil::Rebar

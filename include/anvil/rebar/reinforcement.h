@@ -50,6 +50,7 @@ namespace anvil::Rebar
     {
       for (auto &t : bars)
         t.serialize(ar);
+      ar &own_step &pending_step_change;
     }
 
     /** The history row's figures of every layout, reduced over the
@@ -59,6 +60,35 @@ namespace anvil::Rebar
   private:
     std::vector<Layout>      layouts;
     std::vector<Trusses>     bars;
+
+    /** Layout @p r's truss elements and bond on the bar positions @p xb
+        (the bars' own nodes for bond-slip, the host points for perfect
+        bond) and the host points T.xh: the nodal forces in T.nodal_force
+        (bond-slip: on the bars' nodes, the bond forces in T.bond_force),
+        the histories advanced by @p dt (0: forces only), this process's
+        share of the work booked (work_done on several processes, the
+        energies on one). Returns the smallest stable step of the elements
+        and bond springs. */
+    double evaluate(unsigned int r, double dt, const std::vector<double> &xb);
+    /** The bond of layout @p r (seed Eq. (68)): adds to T.nodal_force and
+        @p bond_work; returns the bond springs' smallest stable step. */
+    double evaluate_bond(unsigned int r, double dt, const std::vector<double> &xb, double &bond_work);
+    /** Central differences for the own nodes of bond-slip layout @p r, from
+        v^{-h_previous/2} to v^{+h/2} under T.fs and gravity; adds the
+        kinetic energy of the variable-step identity at the step's start,
+        the work of the pull's reactions, and F dv. */
+    void advance_velocity(unsigned int r, double h_previous, double h, double &kinetic, double &work,
+                          double &power);
+    /** Subcycled layouts: the substeps 1 ... m - 1 of the scene's step just
+        made (substep 0 went with the host's update), each on the host
+        points interpolated between the last evaluation's and the new ones. */
+    void subcycle();
+    /** Per layout: the bars' own stable step at the last evaluation
+        (subcycled layouts, the smallest over the processes). */
+    std::vector<double> own_step;
+    /** The step-change term of the subcycled bars' energy identity, booked
+        at the next step (as Simulator::update_velocity books the host's). */
+    double pending_step_change = 0;
 
     /**
      * The bars' partition. A node belongs to the process that owns its

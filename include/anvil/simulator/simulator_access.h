@@ -69,6 +69,8 @@ namespace anvil
     // The clock and the energy balance
     double            get_time() const;
     unsigned int      get_step_number() const;
+    /** 'Time step safety factor': the step taken over the stable one. */
+    double            get_time_step_factor() const;
     Energies         &get_energies() const;
 
     double            get_initial_energy() const;
