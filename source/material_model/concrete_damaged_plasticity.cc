@@ -798,7 +798,10 @@ namespace anvil::MaterialModel
         Kinematics::extreme_principal_values(D[0], D[1], D[2], D[3], D[4], D[5], largest, smallest);
         h[i_rate] = filtered_rate(h[i_rate], std::max(std::abs(largest), std::abs(smallest)), dt);
       }
-    inelastic_update(D, dt, dsig, old_stress, stored_old, stress, h);
+    const bool rate = par.rate_effects && dt > 0;
+    inelastic_update(D, dt, dsig, old_stress, stored_old,
+                     rate ? ConcreteDIF::compressive(h[i_rate], par.cube_strength) : 1.,
+                     rate ? ConcreteDIF::tensile(h[i_rate], par.dif_strength) : 1., stress, h);
   }
 
 
@@ -823,13 +826,12 @@ namespace anvil::MaterialModel
                                                    const double *dsig,
                                                    const double *old_stress,
                                                    const double  stored_old,
+                                                   const double  cdif,
+                                                   const double  tdif,
                                                    double       *stress,
                                                    double       *h) const
   {
     const bool   viscous = par.viscosity > 0 && dt > 0;
-    const bool   rate    = par.rate_effects && dt > 0;
-    const double cdif    = rate ? ConcreteDIF::compressive(h[i_rate], par.cube_strength) : 1.;
-    const double tdif    = rate ? ConcreteDIF::tensile(h[i_rate], par.dif_strength) : 1.;
     double      *sref    = h + (viscous ? i_viscous_stress : i_effective_stress);
     double      *sbar    = h + i_effective_stress;
     double       principal[3];
@@ -938,6 +940,7 @@ namespace anvil::MaterialModel
     alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
       mean_stress[W];
     alignas(64) double elastic[W]; // 1: inside the surfaces
+    alignas(64) double cdif[W], tdif[W];
     for (unsigned int l = 0; l < W; ++l)
       {
         for (unsigned int k = 0; k < 6; ++k)
@@ -1080,13 +1083,16 @@ namespace anvil::MaterialModel
             hl[i_rate] = rate[l];
             // Second stage: outside at the static cohesions, perhaps inside
             // at the dynamic ones.
+            // (The return mapping of a point outside at both takes its
+            // factors from here.)
             if (elastic[l] == 0.)
-              elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], largest[l],
-                                           ConcreteDIF::tensile(hl[i_rate], par.dif_strength) *
-                                             hl[i_tensile_cohesion],
-                                           ConcreteDIF::compressive(hl[i_rate], par.cube_strength) *
-                                             hl[i_compressive_cohesion],
-                                           margin[l]);
+              {
+                tdif[l]    = ConcreteDIF::tensile(hl[i_rate], par.dif_strength);
+                cdif[l]    = ConcreteDIF::compressive(hl[i_rate], par.cube_strength);
+                elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], largest[l],
+                                             tdif[l] * hl[i_tensile_cohesion],
+                                             cdif[l] * hl[i_compressive_cohesion], margin[l]);
+              }
           }
         if (elastic[l] != 0.)
           {
@@ -1109,7 +1115,8 @@ namespace anvil::MaterialModel
                 ds[k]  = dsig[k][l];
                 old[k] = s[k][l];
               }
-            inelastic_update(d, dt, ds, old, stored_old[l], st, hl);
+            inelastic_update(d, dt, ds, old, stored_old[l], par.rate_effects ? cdif[l] : 1.,
+                             par.rate_effects ? tdif[l] : 1., st, hl);
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = st[k];
           }

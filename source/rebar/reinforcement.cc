@@ -217,6 +217,10 @@ namespace anvil::Rebar
               throw InputError(s.str());
             }
 
+        T.shape.resize(T.X.size());
+        for (unsigned int i = 0; i < T.X.size(); ++i)
+          T.shape[i] = Trusses::shape_values(T.xi[i]);
+
         // The host cells' vertex dofs on this process.
         std::map<unsigned long, std::pair<std::array<long, 8>, bool>> local;
         for (const auto &cell : dof_handler.active_cell_iterators())
@@ -414,7 +418,7 @@ namespace anvil::Rebar
         for (unsigned int i = 0; i < T.X.size(); ++i)
           if (T.host_dofs[i][0] >= 0)
             {
-              const auto N = Trusses::shape_values(T.xi[i]);
+              const auto &N = T.shape[i];
               for (unsigned int I = 0; I < 8; ++I)
                 if (T.host_dofs[i][I] < long(mass.locally_owned_size()))
                   for (unsigned int d = 0; d < 3; ++d)
@@ -455,7 +459,7 @@ namespace anvil::Rebar
             xr[3 * i + d] = 0;
         for (const unsigned int i : S.relevant_nodes)
           {
-            const auto N = Trusses::shape_values(T.xi[i]);
+            const auto &N = T.shape[i];
             for (unsigned int I = 0; I < 8; ++I)
               for (unsigned int d = 0; d < 3; ++d)
                 xr[3 * i + d] += N[I] * position.local_element(T.host_dofs[i][I] + d);
@@ -528,7 +532,7 @@ namespace anvil::Rebar
               }
         for (const unsigned int i : S.relevant_nodes)
           {
-            const auto N = Trusses::shape_values(T.xi[i]);
+            const auto &N = T.shape[i];
             for (unsigned int I = 0; I < 8; ++I)
               if (T.host_dofs[i][I] < long(force.locally_owned_size()))
                 for (unsigned int d = 0; d < 3; ++d)

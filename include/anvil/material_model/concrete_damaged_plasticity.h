@@ -422,11 +422,12 @@ namespace anvil::MaterialModel
     void track_strain(const double *D, double dt, double *h) const;
 
     /** Everything after the elastic trial (already in the history's
-        effective stress): return mapping, damage, nominal stress
+        effective stress): return mapping at the dynamic increase factors
+        @p cdif, @p tdif (1 without rate effects), damage, nominal stress
         @p stress and dissipation. */
     void inelastic_update(const double *D, double dt, const double *dsig,
                           const double *old_stress, double stored_old,
-                          double *stress, double *h) const;
+                          double cdif, double tdif, double *stress, double *h) const;
 
     Parameters par;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;

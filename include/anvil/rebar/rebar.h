@@ -148,6 +148,9 @@ namespace anvil::Rebar
         in [-1,1]^3 of each node. */
     std::vector<unsigned long>          host_cell;
     std::vector<std::array<double, 3>>  xi;
+    /** The host cell's shape functions at xi, per node (the step's gather
+        of host points and scatter of forces). */
+    std::vector<std::array<double, 8>> shape;
     /** On this process: for each node, the local x-dof indices of the host
         cell's 8 vertices if the cell is owned or ghost here (-1 if not), and
         whether the host cell is owned here. */
