@@ -169,16 +169,18 @@ namespace anvil::Element
         if (!r.eroded_elements.empty())
           record_erosion(g, r.eroded_elements, eroded_info);
       }
+    // (Summed over the processes in finish_forces(): the loop itself
+    // communicates nothing, so its timer shows each process's own work.)
     increments = {{d_int, d_hg, d_eroded, double(eroded.size()), d_visc}};
-    Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
-                        get_mpi_communicator(),
-                        ArrayView<double>(increments.data(), increments.size()));
     return dt_crit;
   }
 
 
   std::vector<unsigned long> SolidBodies::finish_forces()
   {
+    Utilities::MPI::sum(ArrayView<const double>(increments.data(), increments.size()),
+                        get_mpi_communicator(),
+                        ArrayView<double>(increments.data(), increments.size()));
     Energies &energies = get_energies();
     energies.internal += increments[0];
     energies.hourglass += increments[1];

@@ -43,12 +43,14 @@ namespace anvil
 
   // @sect3{Internal forces}
   //
-  // The solid bodies' elements (Element::SolidBodies), then the families
-  // with forces of their own (the bars: replicated on every process, their
+  // The solid bodies' elements (Element::SolidBodies; no communication in
+  // their section), then the families
+  // with forces of their own (the bars: each process its share, their
   // energy counted once), each timed in its own section, then the elements'
-  // energy increments (booked after the families' work, as they always
-  // were: the same sums, bit for bit) and erosion: the eroded elements'
-  // faces leave every family that holds them (the contact pairs).
+  // energy increments (summed over the processes and booked after the
+  // families' work, as they always were: the same sums, bit for bit) and
+  // erosion: the eroded elements' faces leave every family that holds them
+  // (the contact pairs).
   double Simulator::compute_internal_forces(const double dt_previous)
   {
     TimerOutput::Scope t(*timer, "element forces");
@@ -60,6 +62,10 @@ namespace anvil
           TimerOutput::Scope section(*timer, family->name());
           dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
         }
+    // The step's first collective: a process that finished its elements
+    // early waits here (or at the bars' exchange), not in 'element forces',
+    // whose minimum and maximum over the processes show the imbalance.
+    TimerOutput::Scope r(*timer, "reductions");
     const std::vector<unsigned long> eroded = solids->finish_forces();
     if (!eroded.empty())
       contact->deactivate_elements(eroded);

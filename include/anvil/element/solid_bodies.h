@@ -34,11 +34,12 @@ namespace anvil::Element
         ratio that lowers the stable step of an element with a light node. */
     void add_mass(VectorType &mass) override;
     /** Every deformable group's forces at time n; this process's smallest
-        element step (the Simulator takes the minimum over processes). The
-        energy increments are summed over the processes here and booked by
-        finish_forces(). */
+        element step (the Simulator takes the minimum over processes). No
+        communication: the energy increments are summed over the processes
+        and booked by finish_forces(). */
     double add_forces(double dt) override;
-    /** Book the elements' energy increments; when elements eroded this
+    /** Sum the elements' energy increments over the processes and book
+        them; when elements eroded this
         step, gather their ids (returned, sorted, scene-wide: every
         process the same) and erosion.csv's rows (rank 0). */
     std::vector<unsigned long> finish_forces();
