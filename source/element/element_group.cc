@@ -178,6 +178,43 @@ namespace anvil::Element
         }
     }
 
+    /** The mid-step Jacobian J^n - dt/2 dJ/dt at W points. */
+    template <unsigned int W>
+    inline void midstep_jacobian_batch(const double (&Jn)[3][3][W], const double (&Jd)[3][3][W],
+                                       const double dt, double (&Jm)[3][3][W])
+    {
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int c = 0; c < 3; ++c)
+          for (unsigned int l = 0; l < W; ++l)
+            Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
+    }
+
+    /** The velocity gradient L = dJ/dt Jm^-1 at W points, its symmetric
+        part D (xx, yy, zz, xy, yz, xz) and its spin (W_01, W_12, W_02). */
+    template <unsigned int W>
+    inline void deformation_rate_batch(const double (&Jd)[3][3][W], const double (&Jmi)[3][3][W],
+                                       double (&D)[6][W], double (&spin)[3][W])
+    {
+      alignas(64) double L[3][3][W];
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          for (unsigned int l = 0; l < W; ++l)
+            L[a][b][l] =
+              Jd[a][0][l] * Jmi[0][b][l] + Jd[a][1][l] * Jmi[1][b][l] + Jd[a][2][l] * Jmi[2][b][l];
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          D[0][l]    = L[0][0][l];
+          D[1][l]    = L[1][1][l];
+          D[2][l]    = L[2][2][l];
+          D[3][l]    = 0.5 * (L[0][1][l] + L[1][0][l]);
+          D[4][l]    = 0.5 * (L[1][2][l] + L[2][1][l]);
+          D[5][l]    = 0.5 * (L[0][2][l] + L[2][0][l]);
+          spin[0][l] = 0.5 * (L[0][1][l] - L[1][0][l]);
+          spin[1][l] = 0.5 * (L[1][2][l] - L[2][1][l]);
+          spin[2][l] = 0.5 * (L[0][2][l] - L[2][0][l]);
+        }
+    }
+
     /** det A for W 3x3 matrices, lane by lane (det3()'s arithmetic). */
     template <unsigned int W>
     inline void determinant_batch(const double (&A)[3][3][W], double (&det)[W])
@@ -967,10 +1004,7 @@ namespace anvil::Element
           inverted |= !(detn[l] > 0);
         if (dt > 0)
           {
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int c = 0; c < 3; ++c)
-                for (unsigned int l = 0; l < W; ++l)
-                  Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
+            midstep_jacobian_batch(Jn, Jd, dt, Jm);
             determinant_batch(Jm, detm);
             for (unsigned int l = 0; l < W; ++l)
               inverted |= !(detm[l] > 0);
@@ -996,25 +1030,9 @@ namespace anvil::Element
             old[k][l] = sig[k][l] = sig_e[6 * l + k];
         if (dt > 0)
           {
-            alignas(64) double Jmi[3][3][W], L[3][3][W], spin[3][W];
+            alignas(64) double Jmi[3][3][W], spin[3][W];
             inverse_batch(Jm, detm, Jmi);
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = 0; b < 3; ++b)
-                for (unsigned int l = 0; l < W; ++l)
-                  L[a][b][l] = Jd[a][0][l] * Jmi[0][b][l] + Jd[a][1][l] * Jmi[1][b][l] +
-                               Jd[a][2][l] * Jmi[2][b][l];
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                D[0][l]    = L[0][0][l];
-                D[1][l]    = L[1][1][l];
-                D[2][l]    = L[2][2][l];
-                D[3][l]    = 0.5 * (L[0][1][l] + L[1][0][l]);
-                D[4][l]    = 0.5 * (L[1][2][l] + L[2][1][l]);
-                D[5][l]    = 0.5 * (L[0][2][l] + L[2][0][l]);
-                spin[0][l] = 0.5 * (L[0][1][l] - L[1][0][l]);
-                spin[1][l] = 0.5 * (L[1][2][l] - L[2][1][l]);
-                spin[2][l] = 0.5 * (L[0][2][l] - L[2][0][l]);
-              }
+            deformation_rate_batch(Jd, Jmi, D, spin);
             for (unsigned int l = 0; l < W; ++l)
               rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l], sig[1][l], sig[2][l],
                             sig[3][l], sig[4][l], sig[5][l]);
@@ -1262,29 +1280,13 @@ namespace anvil::Element
 
         if (dt > 0)
           {
-            // Velocity gradient on the mid-step configuration.
-            alignas(64) double Jm[3][3][W], Jmi[3][3][W], detm[W], L[3][3][W];
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int c = 0; c < 3; ++c)
-                for (unsigned int l = 0; l < W; ++l)
-                  Jm[a][c][l] = Jn[a][c][l] - 0.5 * dt * Jd[a][c][l];
+            // Velocity gradient on the mid-step configuration: its
+            // symmetric part D and its spin W_01, W_12, W_02.
+            alignas(64) double Jm[3][3][W], Jmi[3][3][W], detm[W], D[6][W], spin[3][W];
+            midstep_jacobian_batch(Jn, Jd, dt, Jm);
             determinant_batch(Jm, detm);
             inverse_batch(Jm, detm, Jmi);
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = 0; b < 3; ++b)
-                for (unsigned int l = 0; l < W; ++l)
-                  L[a][b][l] = Jd[a][0][l] * Jmi[0][b][l] + Jd[a][1][l] * Jmi[1][b][l] +
-                               Jd[a][2][l] * Jmi[2][b][l];
-            alignas(64) double D[6][W];
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                D[0][l] = L[0][0][l];
-                D[1][l] = L[1][1][l];
-                D[2][l] = L[2][2][l];
-                D[3][l] = 0.5 * (L[0][1][l] + L[1][0][l]);
-                D[4][l] = 0.5 * (L[1][2][l] + L[2][1][l]);
-                D[5][l] = 0.5 * (L[0][2][l] + L[2][0][l]);
-              }
+            deformation_rate_batch(Jd, Jmi, D, spin);
             // Padding lanes work on a scratch copy of the history, so that
             // the repeated last element is updated once only.
             double *hist[W];
@@ -1298,15 +1300,8 @@ namespace anvil::Element
                     std::copy(hist[l], hist[l] + n_hist, &scratch_history[n_hist * l]);
                     hist[l] = &scratch_history[n_hist * l];
                   }
-            // Spin W_01, W_12, W_02; the Hughes-Winget rotation of the
-            // stress across lanes (the material rotates its own history).
-            alignas(64) double spin[3][W];
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                spin[0][l] = 0.5 * (L[0][1][l] - L[1][0][l]);
-                spin[1][l] = 0.5 * (L[1][2][l] - L[2][1][l]);
-                spin[2][l] = 0.5 * (L[0][2][l] - L[2][0][l]);
-              }
+            // The Hughes-Winget rotation of the stress across lanes (the
+            // material rotates its own history).
             for (unsigned int l = 0; l < W; ++l)
               Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l],
                                         sig[1][l], sig[2][l], sig[3][l], sig[4][l], sig[5][l]);
