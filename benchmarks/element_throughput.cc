@@ -12,11 +12,12 @@
  * solver state per element and the peak memory per element. Speed-ups are
  * ratios within one run (these machines differ by 30 % between runs).
  *
- * Usage: element_throughput [n] [cycles] [one-point | materials]
+ * Usage: element_throughput [n] [cycles] [one-point | materials | CASE]
  * (one-point: the one-point elastic step and the reference loop alone,
  * three times in turn, for A/B comparisons of builds; materials: the
  * elastic step and each material's ratio to it, five times in turn, and
- * the ratios of the fastest runs)
+ * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
+ * steel-yielding, concrete-elastic, concrete-cracking alone, for profiling)
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
@@ -138,6 +139,12 @@ namespace
     for (unsigned int c = 0; c < cycles; ++c)
       cycle();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (concrete && concrete_model.n_lubliner_returns() > 0)
+      std::printf("  (concrete: %.2f evaluations of F per return to Lubliner's surface, %lu returns, "
+                  "%.1f %% of the point updates)\n",
+                  double(concrete_model.n_lubliner_evaluations()) / concrete_model.n_lubliner_returns(),
+                  concrete_model.n_lubliner_returns(),
+                  100. * concrete_model.n_lubliner_returns() / (double(cycles + 3) * group.n_elements()));
     const double nodal   = 4. * x.size() * sizeof(double) / group.n_elements(); // x, v, f, m
     return {1e9 * seconds / (double(cycles) * group.n_elements()), group.memory_per_element() + nodal};
   }
@@ -190,6 +197,28 @@ int main(int argc, char **argv)
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                Formulation::updated_lagrangian, false, true, true, 0.02);
   };
+  // One case alone, for profiling (perf record) the material updates.
+  if (argc > 3 && std::string(argv[3]) != "materials")
+    {
+      const std::string name = argv[3];
+      const Result      r    = name == "steel-elastic"     ? steel_elastic() :
+                               name == "steel-yielding"    ? steel_yielding(false) :
+                               name == "concrete-elastic"  ? concrete_elastic() :
+                               name == "concrete-cracking" ? concrete_cracking() :
+                               name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
+                                                   Result{-1., 0.};
+      if (r.ns_per_element_cycle < 0)
+        {
+          std::fprintf(stderr,
+                       "element_throughput: unknown case '%s' (allowed: one-point, materials, "
+                       "elastic, steel-elastic, steel-yielding, concrete-elastic, "
+                       "concrete-cracking)\n",
+                       name.c_str());
+          return 1;
+        }
+      std::printf("%s: %.1f ns per element-cycle\n", name.c_str(), r.ns_per_element_cycle);
+      return 0;
+    }
   if (argc > 3 && std::string(argv[3]) == "materials")
     {
       // Each round runs every case once; the fastest of the rounds is the

@@ -640,18 +640,13 @@ namespace anvil::MaterialModel
 
     // The static cohesions at the start; F at hardening variables kt, kc
     // (a variable that did not move keeps its cohesion: no curve lookup).
-    const double ct0 = tensile_cohesion(kt0, len, f), cc0 = compressive_cohesion(kc0, f);
-    auto yield = [&](const double q, const double mean, const double s_max, const double kt,
-                     const double kc) {
-      const double ct = kt != kt0 ? tensile_cohesion(kt, len, f) : ct0;
-      const double cc = kc != kc0 ? compressive_cohesion(kc, f) : cc0;
-      return yield_function(q, mean, s_max, tdif * ct, cdif * cc);
-    };
-
-    const double F0  = yield(q_tr, mean_tr, sp[0], kt0, kc0);
+    double       dct0, dcc0;
+    const double ct0 = tensile_cohesion(kt0, len, f, dct0), cc0 = compressive_cohesion(kc0, f, dcc0);
+    const double F0  = yield_function(q_tr, mean_tr, sp[0], tdif * ct0, cdif * cc0);
     const double tol = 1e-10 * par.curves.compressive_strength;
     if (!(F0 > tol))
       return false;
+    ++lubliner_returns;
 
     // The state after plastic multiplier dl: q by Newton on
     // g(q) = q (1 + 3 G dl / sqrt(a^2 + q^2)) - q_tr = 0. g is increasing
@@ -660,97 +655,150 @@ namespace anvil::MaterialModel
     // root for a = 0 (Drucker-Prager), which lies below the root and within
     // O(a^2 / q) of it: the eccentricity a = e f_t tan psi is small against
     // the q of a return, and one or two steps reach round-off.
+    //
+    // With the state comes dF/d(dl), for the Newton iteration on dl below:
+    // through q (dq/d(dl) = -(3 G q / Q) / g'(q) from g = 0), the mean
+    // stress (-K tan psi) and s_max, and through the cohesions along the
+    // hardening variables: dkappa_t/d(dl) = r de_1/d(dl), dkappa_c/d(dl) =
+    // (1 - r) (-de_3/d(dl)) where the strain increments are active, with
+    // dF/dC_t = -C_c <s_max> / C_t^2 and dF/dC_c = <s_max> / C_t - 1 (C the
+    // cohesions at the rate's factors). The weight r is held (its change
+    // is a kink of the flow, not a slope), so this is Newton's derivative
+    // up to that: the iteration below keeps a bracket for the rest.
     struct State
     {
-      double q, mean, s[3], kt, kc, F;
+      double q, mean, s[3], kt, kc, F, dF;
+    };
+    // (Reciprocals of what a return holds fixed, so that an evaluation
+    // divides as little as it can: its divisions and roots are a chain.)
+    const double inv_q_tr = q_tr > 0 ? 1. / q_tr : 0.;
+    const double per_q[3] = {s_tr[0] * inv_q_tr, s_tr[1] * inv_q_tr, s_tr[2] * inv_q_tr};
+    const double inv_1_alpha = 1. / (1. - alpha), dmean = -K * tan_psi;
+    auto slope = [&](const double q, const double iQ, const double dg, const double (&st)[3],
+                     const double r, const double rate1, const double rate3, const double dl,
+                     const double ct, const double cc, const double dct, const double dcc) {
+      const double Ct = tdif * ct, Cc = cdif * cc, iCt = 1. / Ct;
+      const double dq = q > 0 ? -3. * mu * q * iQ / dg : 0.;
+      double       ds[3], dnum = 0, dden = 0, den = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          ds[i] = dmean + per_q[i] * dq;
+          dnum += st[i] > 0 ? ds[i] : 0.;
+          dden += st[i] > 0 ? ds[i] : -ds[i];
+          den += std::abs(st[i]);
+        }
+      const double dr       = den > 0 ? (dnum - r * dden) / den : 0.;
+      const double beta     = Cc * iCt * (1. - alpha) - (1. + alpha);
+      const double positive = std::max(st[0], 0.);
+      // (de_1 = dl rate1, de_3 = dl rate3.)
+      const double dkt = rate1 > 0 ? (r + dr * dl) * rate1 : 0.;
+      const double dkc = rate3 < 0 ? -(1. - r - dr * dl) * rate3 : 0.;
+      return (dq + 3. * alpha * dmean + (st[0] > 0 ? beta : gamma) * ds[0]) * inv_1_alpha -
+             Cc * positive * (iCt * iCt) * tdif * dct * dkt + (positive * iCt - 1.) * cdif * dcc * dkc;
     };
     auto evaluate = [&](const double dl) {
+      ++lubliner_evaluations;
       State        st;
       const double c3 = 3. * mu * dl;
       double       q  = std::max(q_tr - c3, 0.);
+      double       dg = 1.;
       // (With a = 0 and q = 0 the return reached the apex: q stays 0.)
       for (unsigned int it = 0; it < 50 && q_tr > 0 && (q > 0 || a2 > 0); ++it)
         {
-          const double Q  = std::sqrt(a2 + q * q);
-          const double g  = q * (1. + c3 / Q) - q_tr;
-          const double dg = 1. + c3 * a2 / (Q * Q * Q);
+          const double iQ = 1. / std::sqrt(a2 + q * q);
+          const double g  = q * (1. + c3 * iQ) - q_tr;
+          dg              = 1. + c3 * a2 * (iQ * iQ * iQ);
           const double dq = g / dg;
           q               = std::max(q - dq, 0.);
           // Converged when the step is at round-off, or when the next
           // one would be: Newton's error after a step of dq is about
           // |g'' / (2 g')| dq^2 <= 1.5 c3 a^2 / Q^4 dq^2 (g' >= 1).
           if (std::abs(dq) <= 1e-15 * q_tr ||
-              1.5 * c3 * a2 * dq * dq <= 1e-15 * q_tr * (Q * Q) * (Q * Q))
+              1.5 * c3 * a2 * dq * dq * (iQ * iQ) * (iQ * iQ) <= 1e-15 * q_tr)
             break;
         }
-      const double scale = q_tr > 0 ? q / q_tr : 0.;
+      const double scale = q * inv_q_tr;
       st.q               = q;
-      st.mean            = mean_tr - K * tan_psi * dl;
+      st.mean            = mean_tr + dmean * dl;
       for (unsigned int i = 0; i < 3; ++i)
         st.s[i] = st.mean + scale * s_tr[i];
-      const double Q   = std::sqrt(a2 + q * q);
-      const double de1 = dl * (1.5 * scale * s_tr[0] / Q + tan_psi / 3.);
-      const double de3 = dl * (1.5 * scale * s_tr[2] / Q + tan_psi / 3.);
-      const double r   = tension_weight(st.s);
-      st.kt            = kt0 + r * std::max(de1, 0.);
-      st.kc            = kc0 + (1. - r) * std::max(-de3, 0.);
-      st.F             = yield(q, st.mean, st.s[0], st.kt, st.kc);
+      const double iQ    = 1. / std::sqrt(a2 + q * q);
+      const double rate1 = 1.5 * scale * s_tr[0] * iQ + tan_psi / 3.;
+      const double rate3 = 1.5 * scale * s_tr[2] * iQ + tan_psi / 3.;
+      const double de1   = dl * rate1;
+      const double de3   = dl * rate3;
+      const double r     = tension_weight(st.s);
+      st.kt              = kt0 + r * std::max(de1, 0.);
+      st.kc              = kc0 + (1. - r) * std::max(-de3, 0.);
+      double       dct = dct0, dcc = dcc0;
+      const double ct = st.kt != kt0 ? tensile_cohesion(st.kt, len, f, dct) : ct0;
+      const double cc = st.kc != kc0 ? compressive_cohesion(st.kc, f, dcc) : cc0;
+      st.F  = yield_function(q, st.mean, st.s[0], tdif * ct, cdif * cc);
+      st.dF = slope(q, iQ, dg, st.s, r, rate1, rate3, dl, ct, cc, dct, dcc);
       return st;
     };
 
-    // Bracket the root, then regula falsi with the Anderson-Bjoerck weight
-    // on a retained end. The first guess is the Newton step of F at the
-    // trial with the cohesions fixed and a = 0: q falls by 3 G dl, the mean
-    // stress by K tan psi dl and s_max by K tan psi dl + 3 G dl s_tr,max /
-    // q_tr, each scaled in F by its coefficient (1, 3 alpha, beta or
-    // gamma). Hardening or softening of the cohesions moves the root; a
-    // guess short of it is doubled until F changes sign.
-    const double beta0    = cdif * cc0 / (tdif * ct0) * (1. - alpha) - (1. + alpha);
-    const double s_weight = sp[0] > 0 ? beta0 : gamma;
-    const double ds_max   = K * tan_psi + (q_tr > 0 ? 3. * mu * s_tr[0] / q_tr : 0.);
-    const double slope =
-      (3. * mu + 3. * alpha * K * tan_psi + std::max(s_weight, 0.) * ds_max) / (1. - alpha);
-    double lo = 0, Flo = F0;
-    double hi = F0 / slope;
-    State  s_hi = evaluate(hi);
-    for (unsigned int it = 0; it < 200 && s_hi.F > 0; ++it)
+    // Newton on F(dl) = 0 from dl = 0 (F0 > 0), its first step with the
+    // slope at the trial, keeping a bracket [lo, hi] of the root: a Newton
+    // step that leaves the bracket (across a kink of the curves or of the
+    // weight r), or a slope that does not fall, gives way to the secant of
+    // the bracket's ends, or to bisection when the secant keeps the same
+    // end twice; no upper end yet, the step is doubled instead. F falls
+    // with dl where the return exists (the cohesions soften slower than
+    // the stress relaxes), so the bracket closes.
+    double dl;
+    {
+      const double iQ    = 1. / std::sqrt(a2 + q_tr * q_tr);
+      const double rate1 = 1.5 * s_tr[0] * iQ + tan_psi / 3.;
+      const double rate3 = 1.5 * s_tr[2] * iQ + tan_psi / 3.;
+      const double dF0 =
+        slope(q_tr, iQ, 1., sp, tension_weight(sp), rate1, rate3, 0., ct0, cc0, dct0, dcc0);
+      // (Without a falling slope: the step of the cohesions held fixed.)
+      const double beta0    = cdif * cc0 / (tdif * ct0) * (1. - alpha) - (1. + alpha);
+      const double s_weight = sp[0] > 0 ? beta0 : gamma;
+      const double ds_max   = K * tan_psi + 3. * mu * per_q[0];
+      const double fixed =
+        (3. * mu + 3. * alpha * K * tan_psi + std::max(s_weight, 0.) * ds_max) / (1. - alpha);
+      dl = dF0 < 0 ? F0 / -dF0 : F0 / fixed;
+    }
+    double lo = 0, Flo = F0, hi = 0, Fhi = 0;
+    bool   bracketed = false;
+    int    kept      = 0; // which end the last secant step kept: 1 lo, -1 hi
+    State  st;
+    for (unsigned int it = 0; it < 200; ++it)
       {
-        lo   = hi;
-        Flo  = s_hi.F;
-        hi   = 2. * hi;
-        s_hi = evaluate(hi);
-      }
-    double Fhi = s_hi.F;
-    State  st  = s_hi;
-    int    side = 0;
-    for (unsigned int it = 0; it < 200 && std::abs(st.F) > tol; ++it)
-      {
-        const double dl = (lo * Fhi - hi * Flo) / (Fhi - Flo);
-        st              = evaluate(dl);
-        // The end kept a second time has its F scaled (Anderson-Bjoerck:
-        // by 1 - F_new / F_replaced, or 1/2 if that is not positive).
-        auto weight = [](const double F_new, const double F_replaced) {
-          const double m = 1. - F_new / F_replaced;
-          return m > 0 ? m : 0.5;
-        };
+        st = evaluate(dl);
+        if (std::abs(st.F) <= tol)
+          break;
         if (st.F > 0)
           {
-            if (side == 1)
-              Fhi *= weight(st.F, Flo);
-            lo   = dl;
-            Flo  = st.F;
-            side = 1;
+            lo  = dl;
+            Flo = st.F;
           }
         else
           {
-            if (side == -1)
-              Flo *= weight(st.F, Fhi);
-            hi   = dl;
-            Fhi  = st.F;
-            side = -1;
+            hi        = dl;
+            Fhi       = st.F;
+            bracketed = true;
           }
-        if (hi - lo <= 1e-15 * hi)
+        if (bracketed && hi - lo <= 1e-15 * hi)
           break;
+        const double newton = st.dF < 0 ? dl - st.F / st.dF : -1.;
+        if (!bracketed)
+          dl = newton > dl ? newton : 2. * dl;
+        else if (newton > lo && newton < hi)
+          {
+            if (newton == dl) // (a step below round-off of dl)
+              break;
+            dl   = newton;
+            kept = 0;
+          }
+        else
+          {
+            const int end = st.F > 0 ? -1 : 1;
+            dl            = end == kept ? 0.5 * (lo + hi) : (lo * Fhi - hi * Flo) / (Fhi - Flo);
+            kept          = end == kept ? 0 : end;
+          }
       }
 
     const double scale = q_tr > 0 ? st.q / q_tr : 0.;

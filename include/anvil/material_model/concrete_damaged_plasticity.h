@@ -35,6 +35,26 @@ namespace anvil::MaterialModel
       return ys[i - 1] + (x - xs[i - 1]) * slopes[i - 1];
     }
 
+    /** The value at @p x and the slope of the piece that holds it (0
+        beyond the table's ends, where the value is held), from one
+        search. */
+    double operator()(const double x, double &slope) const
+    {
+      if (x <= xs.front())
+        {
+          slope = 0;
+          return ys.front();
+        }
+      if (x >= xs.back())
+        {
+          slope = 0;
+          return ys.back();
+        }
+      const unsigned int i = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
+      slope                = slopes[i - 1];
+      return ys[i - 1] + (x - xs[i - 1]) * slopes[i - 1];
+    }
+
     const std::vector<double> &abscissae() const
     {
       return xs;
@@ -323,6 +343,27 @@ namespace anvil::MaterialModel
       const double e_in = kappa_c / b;
       return f * par.curves.compression(e_in) + (1. - b) * youngs_modulus() * e_in;
     }
+    /** The two cohesions with their derivatives by kappa (the return
+        mapping's Newton iteration), each from one table search. */
+    double tensile_cohesion(const double kappa_t, const double h, const double f,
+                            double &derivative) const
+    {
+      const double b    = par.tensile_plastic_fraction;
+      const double e_in = kappa_t / b;
+      double       slope;
+      const double c = f * par.curves.tension(h * e_in, slope) + (1. - b) * youngs_modulus() * e_in;
+      derivative    = (f * slope * h + (1. - b) * youngs_modulus()) / b;
+      return c;
+    }
+    double compressive_cohesion(const double kappa_c, const double f, double &derivative) const
+    {
+      const double b    = par.compressive_plastic_fraction;
+      const double e_in = kappa_c / b;
+      double       slope;
+      const double c = f * par.curves.compression(e_in, slope) + (1. - b) * youngs_modulus() * e_in;
+      derivative    = (f * slope + (1. - b) * youngs_modulus()) / b;
+      return c;
+    }
 
     /** The yield function's alpha and gamma. */
     double get_alpha() const
@@ -332,6 +373,18 @@ namespace anvil::MaterialModel
     double get_gamma() const
     {
       return gamma;
+    }
+
+    /** How hard the return to Lubliner's surface works: the returns made
+        so far and the evaluations of F they took (benchmarks print the
+        ratio). */
+    unsigned long n_lubliner_returns() const
+    {
+      return lubliner_returns;
+    }
+    unsigned long n_lubliner_evaluations() const
+    {
+      return lubliner_evaluations;
     }
 
   private:
@@ -430,6 +483,7 @@ namespace anvil::MaterialModel
                           double cdif, double tdif, double *stress, double *h) const;
 
     Parameters par;
+    mutable unsigned long lubliner_returns = 0, lubliner_evaluations = 0;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
 
     /** The history's optional parts, after the n_base_history values
