@@ -17,6 +17,11 @@ ghost cells). Collectives: calls and the bytes each rank puts in
 (reductions of energies and of the stable step, and the contact pairs'
 gather of every pair node's position to every rank). Nothing is
 asserted; doc/performance.md turns the figures into a scaling note.
+
+With --efficiency it times instead: the blocks (pressed together, before
+and in contact) and the column (the hammer's first milliseconds) on one
+and two processes over the same steps, and prints the two-process
+parallel efficiency.
 """
 import argparse
 import os
@@ -66,6 +71,27 @@ def counts(anvil, lib, work, scene, name, np, end_time):
     return float(summary["steps"]), float(summary["elements"]), ranks
 
 
+def wall_per_step(anvil, work, scene, name, np, end_times):
+    """Wall time per step between two end times (setup and the final
+    output cancel), from each run's summary.csv."""
+    points = []
+    for end_time in end_times:
+        run_name = f"{name}_time_np{np}_{end_time:g}"
+        cmd = ["mpirun", "--oversubscribe", "-np", str(np), anvil, scene]
+        for s in (f"Simulation/Name={run_name}", f"Simulation/End time={end_time}",
+                  "Simulation/Output interval=0", "Simulation/Plots=false",
+                  "Simulation/Overwrite existing output=true", "Simulation/End kinetic energy fraction=0"):
+            cmd += ["--set", s]
+        r = subprocess.run(cmd, cwd=work, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise SystemExit(f"{name} on {np}: exit {r.returncode}: {r.stderr.strip()[-400:]}")
+        with open(os.path.join(work, "output", run_name, "summary.csv")) as fh:
+            summary = dict(l.strip().split(",") for l in fh.readlines()[1:])
+        points.append((float(summary["steps"]), float(summary["wall_time_s"]), float(summary["elements"])))
+    (s1, w1, elements), (s2, w2, _) = points
+    return (w2 - w1) / (s2 - s1), s2 - s1, elements
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--anvil", default=os.path.join(SOURCE, "build", "anvil"))
@@ -74,6 +100,9 @@ def main():
     p.add_argument("--processes", default="1,2,4,8")
     p.add_argument("--scenes", default="column,column_in_contact,blocks",
                    help="which of column, column_in_contact, blocks")
+    p.add_argument("--efficiency", action="store_true",
+                   help="time the step instead of counting: wall time per step on one and two "
+                        "processes and the two-process parallel efficiency (blocks and column)")
     a = p.parse_args()
     anvil = os.path.abspath(a.anvil)
     lib = os.path.abspath(a.library or os.path.join(os.path.dirname(anvil), "benchmarks", "libanvil_mpi_counts.so"))
@@ -83,6 +112,22 @@ def main():
     # contact pair's records grow with the nodes in contact).
     scenes = [("column", COLUMN, (1e-5, 5e-5)), ("column_in_contact", COLUMN, (1e-3, 1.04e-3)),
               ("blocks", blocks_scene(os.path.join(work, "blocks.prm")), (2e-5, 1e-4))]
+    if a.efficiency:
+        # Timed on this machine's two cores: each scene on one process and
+        # on two, in turn, over the same steps; efficiency = t1 / (2 t2).
+        times = [("blocks", blocks_scene(os.path.join(work, "blocks.prm")), (1e-4, 6e-4)),
+                 ("column", COLUMN, (1e-3, 5e-3))]
+        print("| scene | elements | steps timed | one process, ms / step | two processes, ms / step "
+              "| speed-up | parallel efficiency |")
+        print("| --- | --- | --- | --- | --- | --- | --- |")
+        for name, scene, ends in times:
+            if name not in a.scenes.split(","):
+                continue
+            t1, steps, elements = wall_per_step(anvil, work, scene, name, 1, ends)
+            t2, _, _ = wall_per_step(anvil, work, scene, name, 2, ends)
+            print(f"| {name} | {elements:.0f} | {steps:.0f} | {1e3 * t1:.2f} | {1e3 * t2:.2f} | "
+                  f"{t1 / t2:.2f} | {100 * t1 / (2 * t2):.0f} % |", flush=True)
+        return
     print("| scene | processes | elements | steps counted | p2p messages / rank / step | p2p bytes / rank / step "
           "| collective calls / step | collective bytes / rank / step | largest rank's bytes / step |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")

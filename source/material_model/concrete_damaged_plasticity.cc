@@ -966,8 +966,11 @@ namespace anvil::MaterialModel
                                              largest, smallest);
         now[l] = std::max(std::abs(largest), std::abs(smallest));
       }
+    // (filtered_rate() with its weight dt / (T + dt) taken once for the
+    // batch: the same arithmetic, one division instead of eight.)
+    const double weight = dt / (par.rate_filter_time + dt);
     for (unsigned int l = 0; l < batch_size; ++l)
-      rate[l] = filtered_rate(rate[l], now[l], dt);
+      rate[l] = rate[l] < 0 ? now[l] : rate[l] + (now[l] - rate[l]) * weight;
   }
 
 
