@@ -139,7 +139,7 @@ namespace anvil
   // element almost nothing, and a rank that holds the column's fully
   // integrated region under the hammer would hold the slowest share of the
   // step. Weights per cell: 1000 for a one-point element,
-  // full_integration_weight (9000, measured) for a fully integrated one,
+  // full_integration_weight (15000, measured) for a fully integrated one,
   // 100 for a rigid body's. The partition is a function of the mesh and the scene only, so
   // a resumed run finds the same one; the results do not depend on it.
   void Simulator::partition_by_cost()

@@ -218,13 +218,14 @@ namespace anvil
     void partition_by_cost();
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
-        (cracking under the hammer) costs about 9 one-point elements over
-        the whole 150 ms (two ranks, 'element forces' per rank: 119.1 /
-        136.9 s with 12000, 8.85 from those counts; 142.2 / 137.5 s with
-        9000). Over the first 2 ms, before most of the cracking and the
-        faster return, it was 12 (5.96 s with equal weights, 5.80 / 5.48 /
-        5.33 / 5.33 s with 4 / 8 / 12 / 16 times; one rank 8.55 s). */
-    static constexpr unsigned int full_integration_weight = 9000;
+        (cracking under the hammer, eight return mappings an element)
+        costs about 15 one-point elements, measured on one process with
+        the region and without it ('element forces' per step, the extra
+        over its 576 elements): 15.4 over the whole 150 ms, 15.9 and 13.3
+        over the first 40 ms. (Two-process runs cannot measure it on these
+        machines: one core of the pair runs up to 60 % slower than the
+        other for minutes at a time.) */
+    static constexpr unsigned int full_integration_weight = 15000;
     void setup_system();
     void assemble_lumped_mass();
     void setup_boundary_conditions();
