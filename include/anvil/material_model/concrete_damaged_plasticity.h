@@ -25,19 +25,14 @@ namespace anvil::MaterialModel
 
     double operator()(const double x) const
     {
-      if (x <= xs.front())
-        return ys.front();
-      if (x >= xs.back())
-        return ys.back();
-      // (No division in the return mapping's inner loop: the slopes are
-      // kept.)
-      const unsigned int i = std::upper_bound(xs.begin(), xs.end(), x) - xs.begin();
-      return ys[i - 1] + (x - xs[i - 1]) * slopes[i - 1];
+      double slope;
+      return (*this)(x, slope);
     }
 
     /** The value at @p x and the slope of the piece that holds it (0
         beyond the table's ends, where the value is held), from one
-        search. */
+        search. (No division in the return mapping's inner loop: the
+        slopes are kept.) */
     double operator()(const double x, double &slope) const
     {
       if (x <= xs.front())
@@ -332,16 +327,14 @@ namespace anvil::MaterialModel
         need no damage). */
     double tensile_cohesion(const double kappa_t, const double h, const double f) const
     {
-      const double b    = par.tensile_plastic_fraction;
-      const double e_in = kappa_t / b;
-      return f * par.curves.tension(h * e_in) + (1. - b) * youngs_modulus() * e_in;
+      double derivative;
+      return tensile_cohesion(kappa_t, h, f, derivative);
     }
     /** The cohesion of compression() alone. */
     double compressive_cohesion(const double kappa_c, const double f) const
     {
-      const double b    = par.compressive_plastic_fraction;
-      const double e_in = kappa_c / b;
-      return f * par.curves.compression(e_in) + (1. - b) * youngs_modulus() * e_in;
+      double derivative;
+      return compressive_cohesion(kappa_c, f, derivative);
     }
     /** The two cohesions with their derivatives by kappa (the return
         mapping's Newton iteration), each from one table search. */
