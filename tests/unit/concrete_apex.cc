@@ -14,8 +14,7 @@
  *   E / (3 K) = b_t + (1 - b_t)(1 - 2 nu): per direction, the damaged part
  *   of the cracking strain sees the bulk stiffness 3 K instead of E.
  */
-#include <anvil/material_model/concrete_damaged_plasticity.h>
-
+#include "concrete_point.h"
 #include "unit_test.h"
 
 #include <algorithm>
@@ -26,17 +25,12 @@ using anvil::test::check_below;
 
 int main()
 {
-  ConcreteDamagedPlasticity                model;
-  ConcreteDamagedPlasticity::Parameters    p;
-  p.curves = ConcreteCurves::model_code_2010(45.4e6);
+  const auto                p = anvil::test::column_concrete();
+  ConcreteDamagedPlasticity model;
   model.set(p);
   const double h = 0.05, f_t = p.curves.tensile_strength, G_F = p.curves.fracture_energy;
   const double nu = p.poissons_ratio, b = p.tensile_plastic_fraction;
-
-  std::vector<double> history(model.n_history(anvil::Formulation::updated_lagrangian), 0.);
-  PointData data;
-  data.characteristic_length = h;
-  model.initialize_history(history.data(), data);
+  std::vector<double> history = anvil::test::fresh_history(model, h);
 
   // Strain at full opening: kappa = b w_c / h plus the elastic-damaged part
   // (1 - b) E e_in / (3 K); run to 1.2 times it.

@@ -20,8 +20,8 @@
  *   leaves it to the bracket's secant and bisection).
  */
 #include <anvil/kinematics/tensor3.h>
-#include <anvil/material_model/concrete_damaged_plasticity.h>
 
+#include "concrete_point.h"
 #include "unit_test.h"
 
 #include <algorithm>
@@ -33,9 +33,8 @@ using anvil::test::check_below;
 
 int main()
 {
-  ConcreteDamagedPlasticity             model;
-  ConcreteDamagedPlasticity::Parameters p;
-  p.curves = ConcreteCurves::model_code_2010(45.4e6);
+  const auto                p = anvil::test::column_concrete();
+  ConcreteDamagedPlasticity model;
   model.set(p);
   using M             = ConcreteDamagedPlasticity;
   const double h      = 0.05;
@@ -77,10 +76,7 @@ int main()
   const unsigned long evals0   = model.n_lubliner_evaluations();
   for (const Path &path : paths)
     {
-      std::vector<double> history(model.n_history(anvil::Formulation::updated_lagrangian), 0.);
-      PointData           data;
-      data.characteristic_length = h;
-      model.initialize_history(history.data(), data);
+      std::vector<double> history = anvil::test::fresh_history(model, h);
       const unsigned int n  = 400;
       const double       dt = 1e-6, rate = path.strain / (n * dt);
       double             D[6], stress[6] = {0, 0, 0, 0, 0, 0};
