@@ -662,9 +662,9 @@ namespace anvil::MaterialModel
     // hardening variables: dkappa_t/d(dl) = r de_1/d(dl), dkappa_c/d(dl) =
     // (1 - r) (-de_3/d(dl)) where the strain increments are active, with
     // dF/dC_t = -C_c <s_max> / C_t^2 and dF/dC_c = <s_max> / C_t - 1 (C the
-    // cohesions at the rate's factors). The weight r is held (its change
-    // is a kink of the flow, not a slope), so this is Newton's derivative
-    // up to that: the iteration below keeps a bracket for the rest.
+    // cohesions at the rate's factors), and through the tension weight r
+    // (dr from the principal values' rates). Where the flow or a curve has
+    // a kink, the iteration below keeps a bracket.
     struct State
     {
       double q, mean, s[3], kt, kc, F, dF;
@@ -844,7 +844,8 @@ namespace anvil::MaterialModel
       {
         double largest, smallest;
         Kinematics::extreme_principal_values(D[0], D[1], D[2], D[3], D[4], D[5], largest, smallest);
-        h[i_rate] = filtered_rate(h[i_rate], std::max(std::abs(largest), std::abs(smallest)), dt);
+        h[i_rate] = filtered_rate(h[i_rate], std::max(std::abs(largest), std::abs(smallest)),
+                                  rate_filter_weight(dt));
       }
     const bool rate = par.rate_effects && dt > 0;
     inelastic_update(D, dt, dsig, old_stress, stored_old,
@@ -966,11 +967,10 @@ namespace anvil::MaterialModel
                                              largest, smallest);
         now[l] = std::max(std::abs(largest), std::abs(smallest));
       }
-    // (filtered_rate() with its weight dt / (T + dt) taken once for the
-    // batch: the same arithmetic, one division instead of eight.)
-    const double weight = dt / (par.rate_filter_time + dt);
+    // (The weight once for the batch: one division instead of eight.)
+    const double weight = rate_filter_weight(dt);
     for (unsigned int l = 0; l < batch_size; ++l)
-      rate[l] = rate[l] < 0 ? now[l] : rate[l] + (now[l] - rate[l]) * weight;
+      rate[l] = filtered_rate(rate[l], now[l], weight);
   }
 
 

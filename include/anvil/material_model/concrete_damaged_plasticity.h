@@ -452,10 +452,16 @@ namespace anvil::MaterialModel
     }
 
     /** The low-pass filter of the strain rate: @p now at the first step
-        (@p rate < 0), else rate + (now - rate) dt / (tau + dt). */
-    double filtered_rate(const double rate, const double now, const double dt) const
+        (@p rate < 0), else rate + (now - rate) w with the weight
+        w = rate_filter_weight(dt) = dt / (tau + dt) (taken once for a
+        batch). */
+    double rate_filter_weight(const double dt) const
     {
-      return rate < 0 ? now : rate + (now - rate) * (dt / (par.rate_filter_time + dt));
+      return dt / (par.rate_filter_time + dt);
+    }
+    static double filtered_rate(const double rate, const double now, const double weight)
+    {
+      return rate < 0 ? now : rate + (now - rate) * weight;
     }
 
     /** The filtered strain rate of a batch after the step with
