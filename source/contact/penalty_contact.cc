@@ -3,6 +3,8 @@
  * Symmetric node-to-segment penalty contact, seed section 4.3.
  */
 #include <anvil/contact/penalty_contact.h>
+
+#include "penalty_contact_halo.h"
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/partitioner.h>
@@ -193,18 +195,21 @@ namespace anvil::Contact
 
   // @sect3{The search structure}
   //
-  // An R-tree of the master nodes, rebuilt only when some master node has
-  // moved more than a safety distance (half the thinnest master element)
-  // since the last build. Between builds the nearest master node is still
-  // found exactly: if the stale nearest node is at stale distance d0 and no
-  // node has moved more than s, the true nearest node lies within stale
-  // distance d0 + 2 s of the slave node, and those candidates are compared
-  // at their current positions.
+  // An R-tree of the master nodes a rank sees, rebuilt only when they
+  // change or some has moved more than a safety distance (half the thinnest
+  // master element) since the last build. Between builds the nearest master
+  // node is still found exactly: if the stale nearest node is at stale
+  // distance d0 and no node has moved more than s, the true nearest node
+  // lies within stale distance d0 + 2 s of the slave node, and those
+  // candidates are compared at their current positions.
   struct PenaltyContact::SearchTree
   {
     bgi::rtree<Value, bgi::rstar<16>> tree;
-    std::vector<double>               built;
-    double                            safety = 0;
+    /** The nodes in the tree, and their positions when it was packed (3
+        per pair node; the others' entries are not used). */
+    std::vector<unsigned int> nodes;
+    std::vector<double>       built;
+    double                    safety = 0;
   };
 
 
@@ -226,36 +231,16 @@ namespace anvil::Contact
         old_spring_depth.clear();
         old_geometric_force.clear();
         near_nodes.clear();
-        if (has_analytic(0) || has_analytic(1))
-          {
-            previous_tangential_force.clear();
-            spring_load.assign(dofs.size(), 0.);
-          }
+        previous_tangential_force.clear();
+        spring_load.assign(dofs.size(), 0.);
+        loaded.clear();
+        load_mark.assign(dofs.size(), 0);
       }
-    // The trees are rebuilt from the positions they were built with (the
-    // tree over surface s serves the pass with s as master), so the resumed
-    // run rebuilds them at the same steps and finds the same candidates.
-    // (A tree is made at the first search: a run resumed before its first
-    // step has none yet, so whether it exists is part of the state.)
-    for (unsigned int s = 0; s < 2; ++s)
-      {
-        bool exists = search[s] != nullptr;
-        ar  &exists;
-        if (!exists)
-          continue;
-        if (ar.is_loading() && !search[s])
-          search[s] = std::make_shared<SearchTree>();
-        ar &search[s]->built &search[s]->safety;
-        if (ar.is_loading() && !search[s]->built.empty())
-          {
-            const auto        &x = search[s]->built;
-            std::vector<Value> values;
-            values.reserve(surface[s].nodes.size());
-            for (const unsigned int i : surface[s].nodes)
-              values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
-            search[s]->tree = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
-          }
-      }
+    // (The search trees are not part of the state: a resumed run packs
+    // them anew, and the nearest master node does not depend on when a
+    // tree was packed.)
+    if (ar.is_loading())
+      search[0].reset(), search[1].reset();
   }
 
 
@@ -409,13 +394,17 @@ namespace anvil::Contact
           }
         // The thickest element's reference thickness V / A.
         surf.max_reference_depth = 0;
+        surf.min_reference_depth = 1e300;
         for (const auto &[n, k] : order)
           {
             const auto  &X = segs[k].reference_position;
             const double A = norm(quad_area_vector(
               {X[0], X[1], X[2]}, {X[3], X[4], X[5]}, {X[6], X[7], X[8]}, {X[9], X[10], X[11]}));
             if (A > 0)
-              surf.max_reference_depth = std::max(surf.max_reference_depth, segs[k].volume / A);
+              {
+                surf.max_reference_depth = std::max(surf.max_reference_depth, segs[k].volume / A);
+                surf.min_reference_depth = std::min(surf.min_reference_depth, segs[k].volume / A);
+              }
           }
         surf.same_element.assign(surf.segments.size(), {});
         for (const auto &[e, list] : element_segments)
@@ -444,25 +433,42 @@ namespace anvil::Contact
   }
 
 
-  namespace
+  void Surface::update_segment(const unsigned int k, const std::vector<double> &x)
   {
-    /** Area, area vector and pressure modulus of segment @p k of @p surf at
-        positions @p x. */
-    void update_segment(Surface &surf, const unsigned int k, const std::vector<double> &x)
-    {
-      auto pos = [&](const unsigned int i) -> Vec {
-        return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
-      };
-      const auto  &n = surf.segments[k];
-      const Vec    a = quad_area_vector(pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3]));
-      const double A = norm(a);
-      surf.area[k]                        = A;
-      surf.segment_area_vector[3 * k]     = a.x;
-      surf.segment_area_vector[3 * k + 1] = a.y;
-      surf.segment_area_vector[3 * k + 2] = a.z;
-      surf.modulus[k]                     = A > 0 ? surf.bulk[k] * A / surf.volume[k] : 0.;
-    }
-  } // namespace
+    auto pos = [&](const unsigned int i) -> Vec {
+      return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+    };
+    const auto  &n = segments[k];
+    const Vec    a = quad_area_vector(pos(n[0]), pos(n[1]), pos(n[2]), pos(n[3]));
+    const double A = norm(a);
+    area[k]                        = A;
+    segment_area_vector[3 * k]     = a.x;
+    segment_area_vector[3 * k + 1] = a.y;
+    segment_area_vector[3 * k + 2] = a.z;
+    modulus[k]                     = A > 0 ? bulk[k] * A / volume[k] : 0.;
+  }
+
+
+  void Surface::update_node(const unsigned int i)
+  {
+    double       av[3] = {0, 0, 0}, sum_area = 0, sum_modulus = 0, sum_depth = 0;
+    unsigned int count = 0;
+    for (const unsigned int k : node_segments[i])
+      if (active[k])
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            av[d] += 0.25 * segment_area_vector[3 * k + d];
+          sum_area += 0.25 * area[k];
+          sum_modulus += modulus[k];
+          sum_depth += area[k] > 0 ? volume[k] / area[k] : 0.;
+          ++count;
+        }
+    for (unsigned int d = 0; d < 3; ++d)
+      area_vector[3 * i + d] = av[d];
+    node_area[i]    = sum_area;
+    node_modulus[i] = count > 0 ? sum_modulus / count : 0.;
+    node_depth[i]   = count > 0 ? sum_depth / count : 0.;
+  }
 
 
   // @sect3{The current geometry}
@@ -492,27 +498,8 @@ namespace anvil::Contact
                                        const std::vector<unsigned int> *near)
   {
     Surface &surf    = surface[s];
-    auto     segment = [&](const unsigned int k) { update_segment(surf, k, x); };
-    // The sums over the active segments around node i.
-    auto node = [&](const unsigned int i) {
-      double       av[3] = {0, 0, 0}, area = 0, modulus = 0, depth = 0;
-      unsigned int count = 0;
-      for (const unsigned int k : surf.node_segments[i])
-        if (surf.active[k])
-          {
-            for (unsigned int d = 0; d < 3; ++d)
-              av[d] += 0.25 * surf.segment_area_vector[3 * k + d];
-            area += 0.25 * surf.area[k];
-            modulus += surf.modulus[k];
-            depth += surf.area[k] > 0 ? surf.volume[k] / surf.area[k] : 0.;
-            ++count;
-          }
-      for (unsigned int d = 0; d < 3; ++d)
-        surf.area_vector[3 * i + d] = av[d];
-      surf.node_area[i]    = area;
-      surf.node_modulus[i] = count > 0 ? modulus / count : 0.;
-      surf.node_depth[i]   = count > 0 ? depth / count : 0.;
-    };
+    auto     segment = [&](const unsigned int k) { surf.update_segment(k, x); };
+    auto     node    = [&](const unsigned int i) { surf.update_node(i); };
     if (near == nullptr)
       {
         for (unsigned int k = 0; k < surf.segments.size(); ++k)
@@ -562,67 +549,17 @@ namespace anvil::Contact
   double PenaltyContact::stable_frequency_squared() const
   {
     double w2 = 0;
-    for (unsigned int i = 0; i < spring_load.size() && i < node_mass.size(); ++i)
-      if (spring_load[i] > 0 && node_mass[i] > 0)
+    for (const unsigned int i : loaded)
+      if (spring_load[i] > 0 && i < node_mass.size() && node_mass[i] > 0)
         w2 = std::max(w2, spring_load[i] / node_mass[i]);
     return w2;
   }
 
 
-  ContactResult PenaltyContact::compute_forces(const std::vector<double> &x,
-                                               const std::vector<double> &v,
-                                               const double               dt,
-                                               std::vector<double>       &f)
-  {
-    ContactResult result;
-    // (The analytic pass clears its own nodes' spring loads.)
-    if (has_analytic(0) || has_analytic(1))
-      spring_load.resize(dofs.size(), 0.);
-    else
-      spring_load.assign(dofs.size(), 0.);
-    // A rigid body's analytic shape: the other body's nodes against it
-    // (which refreshes the geometry near the shape).
-    if (has_analytic(0) || has_analytic(1))
-      {
-        const unsigned int a = has_analytic(0) ? 0 : 1;
-        analytic_pass(1 - a, x, v, dt, f, result);
-      }
-    else
-      {
-        for (unsigned int s = 0; s < 2; ++s)
-          update_geometry(s, x);
-        for (unsigned int s = 0; s < 2; ++s)
-          if (!search[s])
-            {
-              search[s] = std::make_shared<SearchTree>();
-              double thinnest = 1e300;
-              for (unsigned int k = 0; k < surface[s].segments.size(); ++k)
-                thinnest = std::min(thinnest, surface[s].volume[k] / surface[s].area[k]);
-              search[s]->safety = 0.5 * thinnest;
-            }
-        // Pass 1: the second body's nodes against the first body's segments.
-        pass(1, *search[0], x, v, dt, f, result);
-        // Pass 2 (symmetric): the first body's nodes against the second's.
-        if (symmetric)
-          pass(0, *search[1], x, v, dt, f, result);
-      }
-    // The gradient forces' work needs this step's positions next step;
-    // only springs against a rigid surface have them.
-    if ((surface[0].rigid || surface[1].rigid) && !has_analytic(0) && !has_analytic(1))
-      previous_position = x;
-    result.energy = spring_work;
-    // (The analytic pass has set the whole pair's frequency.)
-    if (!has_analytic(0) && !has_analytic(1))
-      result.frequency_squared = stable_frequency_squared();
-    return result;
-  }
-
-
-  // Start a pass over slave surface @p s: this step's spring forces and
-  // penetrations start from zero, last step's are kept for the work.
-  // (With friction, the tangential forces likewise.)
   namespace
   {
+    // Start a step's gradient forces of a pass from zero, keeping last
+    // step's for the work.
     void start_pass(std::vector<double> &current, std::vector<double> &old)
     {
       old.assign(current.begin(), current.end());
@@ -631,25 +568,186 @@ namespace anvil::Contact
   } // namespace
 
 
+  ContactResult PenaltyContact::compute_forces(const std::vector<double> &x,
+                                               const std::vector<double> &v,
+                                               const double               dt,
+                                               std::vector<double>       &f)
+  {
+    ContactResult result;
+    // A rigid body's analytic shape: the other body's nodes against it
+    // (which refreshes the geometry near the shape; it clears its own
+    // nodes' spring loads).
+    if (has_analytic(0) || has_analytic(1))
+      {
+        spring_load.resize(dofs.size(), 0.);
+        const unsigned int a = has_analytic(0) ? 0 : 1;
+        analytic_pass(1 - a, x, v, dt, f, result);
+        result.energy = spring_work;
+        return result;
+      }
+
+    // Two meshes. A pair no rank shares out (a rigid body's mesh) is
+    // evaluated whole by every rank, on the gathered positions.
+    if (!halo)
+      setup_halo(MPI_COMM_SELF, nullptr);
+    const Halo &h = *halo;
+    spring_load.resize(dofs.size(), 0.);
+    load_mark.resize(dofs.size(), 0);
+    for (const unsigned int i : loaded)
+      {
+        spring_load[i] = 0;
+        load_mark[i]   = 0;
+      }
+    loaded.clear();
+    // The geometry this rank sees; the segments within reach of its slave
+    // nodes from the other ranks.
+    exchange_halo(x, v);
+    const std::vector<double> &xh = h.n_ranks > 1 ? h.x : x;
+    const std::vector<double> &vh = h.n_ranks > 1 ? h.v : v;
+    for (unsigned int s = 0; s < 2; ++s)
+      if (!search[s])
+        {
+          search[s]         = std::make_shared<SearchTree>();
+          search[s]->safety = 0.5 * surface[s].min_reference_depth;
+        }
+    const bool rigid = surface[0].rigid || surface[1].rigid;
+    if (rigid)
+      for (unsigned int s = 0; s < 2; ++s)
+        start_pass(geometric_force[s], last_geometric_force[s]);
+    touches.clear();
+    // Pass 1: the second body's nodes against the first body's segments.
+    pass(1, *search[0], xh, vh, dt, result);
+    // Pass 2 (symmetric): the first body's nodes against the second's.
+    if (symmetric)
+      pass(0, *search[1], xh, vh, dt, result);
+    exchange_touches();
+    apply_touches(xh, f);
+
+    double work = spring_work_step(1) + (symmetric ? spring_work_step(0) : 0.);
+    if (rigid)
+      {
+        // The gradient forces' work needs this step's positions next step.
+        work += gradient_work_step(1, x) + (symmetric ? gradient_work_step(0, x) : 0.);
+        previous_position = x;
+      }
+    result.frequency_squared = stable_frequency_squared();
+    result.n_springs_across_partitions = h.sent_touches;
+    if (h.n_ranks > 1)
+      {
+        // The pair's sums and maxima over the ranks (the sums to round-off
+        // of the order of one process; the motion does not depend on them).
+        double sums[11] = {result.force_on_first[0], result.force_on_first[1], result.force_on_first[2],
+                           result.friction_on_first[0], result.friction_on_first[1],
+                           result.friction_on_first[2], result.friction_work, work, double(result.n_active),
+                           double(result.n_passed_through), double(result.n_springs_across_partitions)};
+        double maxima[4] = {result.frequency_squared, result.max_penetration, result.max_penetration_ratio,
+                            result.passed_through_ratio};
+        MPI_Allreduce(MPI_IN_PLACE, sums, 11, MPI_DOUBLE, MPI_SUM, h.comm);
+        MPI_Allreduce(MPI_IN_PLACE, maxima, 4, MPI_DOUBLE, MPI_MAX, h.comm);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            result.force_on_first[d]    = sums[d];
+            result.friction_on_first[d] = sums[3 + d];
+          }
+        result.friction_work               = sums[6];
+        work                               = sums[7];
+        result.n_active                    = static_cast<unsigned int>(sums[8]);
+        result.n_passed_through            = static_cast<unsigned int>(sums[9]);
+        result.n_springs_across_partitions = static_cast<unsigned int>(sums[10]);
+        result.frequency_squared           = maxima[0];
+        result.max_penetration             = maxima[1];
+        result.max_penetration_ratio       = maxima[2];
+        result.passed_through_ratio        = maxima[3];
+      }
+    spring_work += work;
+    result.energy = spring_work;
+    return result;
+  }
+
+
+  // The touches' forces and spring loads on this rank's nodes. Each node's
+  // sum is made in the order of one process (by pass, then by slave node),
+  // from the touches of every rank that evaluated a slave node next to it:
+  // the forces do not depend on the number of processes, bit for bit.
+  void PenaltyContact::apply_touches(const std::vector<double> &x, std::vector<double> &f)
+  {
+    const bool all_mine = owned.empty();
+    auto       mine     = [&](const unsigned int i) { return all_mine || owned[i] != 0; };
+    auto       load     = [&](const unsigned int i, const double value) {
+      if (!load_mark[i])
+        {
+          load_mark[i] = 1;
+          loaded.push_back(i);
+        }
+      spring_load[i] += value;
+    };
+    const std::vector<Touch> *list = &touches;
+    if (!halo->received.empty())
+      {
+        auto &all = halo->received;
+        all.insert(all.end(), touches.begin(), touches.end());
+        std::sort(all.begin(), all.end(), [](const Touch &a, const Touch &b) { return a.key < b.key; });
+        list = &all;
+      }
+    const unsigned long n = dofs.size();
+    for (const Touch &t : *list)
+      {
+        const unsigned int slave_index = 1 - static_cast<unsigned int>(t.key / n);
+        const Surface     &slave       = surface[slave_index];
+        const Surface     &master      = surface[1 - slave_index];
+        const auto        &nodes       = master.segments[t.segment];
+        if (!slave.rigid && mine(t.node))
+          load(t.node, t.k * t.w_sum);
+        if (!master.rigid)
+          for (unsigned int j = 0; j < 4; ++j)
+            if (mine(nodes[j]))
+              load(nodes[j], t.k * std::abs(t.phi[j]) * t.w_sum);
+        if (!(t.flags & 1))
+          continue;
+        if (mine(t.node))
+          for (unsigned int d = 0; d < 3; ++d)
+            f[3 * t.node + d] += t.force[d];
+        if (t.flags & 2) // (a rigid body's mesh: every rank evaluates the whole pair)
+          add_stiffness_gradient(slave_index, t.node, t.normal[0], t.normal[1], t.normal[2], t.l, x, f);
+        for (unsigned int j = 0; j < 4; ++j)
+          if (mine(nodes[j]))
+            for (unsigned int d = 0; d < 3; ++d)
+              f[3 * nodes[j] + d] -= t.phi[j] * t.force[d];
+      }
+    halo->received.clear();
+  }
+
+
   // The work on a pass's springs over the step, by the trapezoidal rule in
   // the penetration l (the energy of every other force in Anvil is booked
   // the same way): 1/2 (f^{n-1} + f^n)(l^n - l^{n-1}), with f = l = 0 for a
   // node out of contact. With a constant stiffness the sum telescopes to
   // 1/2 k l^2; with a stiffness that follows the geometry it is the work
   // the springs actually took, so the energy balance stays closed.
-  void PenaltyContact::book_spring_work(const unsigned int s, const std::vector<double> &x)
+  double PenaltyContact::spring_work_step(const unsigned int s) const
   {
     const auto &f1 = spring_force[s], &l1 = spring_depth[s];
-    for (const unsigned int i : surface[s].nodes)
-      if (f1[i] != 0 || old_spring_force[i] != 0)
-        spring_work += 0.5 * (old_spring_force[i] + f1[i]) * (l1[i] - old_spring_depth[i]);
-    // The gradient forces of add_stiffness_gradient() over the nodes' motion.
-    const auto &g1 = geometric_force[s], &g0 = old_geometric_force;
-    if (previous_position.size() == x.size())
+    const auto &f0 = last_spring_force[s], &l0 = last_spring_depth[s];
+    double      work = 0;
+    for (const unsigned int i : halo->own_nodes[s])
+      if (f1[i] != 0 || f0[i] != 0)
+        work += 0.5 * (f0[i] + f1[i]) * (l1[i] - l0[i]);
+    return work;
+  }
+
+
+  // The gradient forces of add_stiffness_gradient() over the nodes' motion
+  // (every rank evaluates such a pair whole).
+  double PenaltyContact::gradient_work_step(const unsigned int s, const std::vector<double> &x) const
+  {
+    const auto &g1 = geometric_force[s], &g0 = last_geometric_force[s];
+    double      work = 0;
+    if (previous_position.size() == x.size() && g0.size() == g1.size())
       for (const unsigned int i : surface[s].nodes)
         for (unsigned int d = 0; d < 3; ++d)
           if (g1[3 * i + d] != 0 || g0[3 * i + d] != 0)
-            spring_work -= 0.5 * (g0[3 * i + d] + g1[3 * i + d]) * (x[3 * i + d] - previous_position[3 * i + d]);
+            work -= 0.5 * (g0[3 * i + d] + g1[3 * i + d]) * (x[3 * i + d] - previous_position[3 * i + d]);
+    return work;
   }
 
 
@@ -776,8 +874,20 @@ namespace anvil::Contact
 
   bool PenaltyContact::distribute(MPI_Comm comm, const dealii::IndexSet &owned_dofs)
   {
+    // Two meshes: each rank its own slave nodes against the master
+    // segments of its halo; a rigid body's mesh (its nodes' gradient terms
+    // reach past the halo) is evaluated whole by every rank.
     if (!has_analytic(0) && !has_analytic(1))
-      return false;
+      {
+        if (surface[0].rigid || surface[1].rigid)
+          return false;
+        communicator = comm;
+        owned.assign(dofs.size(), 0);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          owned[i] = owned_dofs.is_element(dofs[i]);
+        setup_halo(comm, &owned_dofs);
+        return true;
+      }
     communicator = comm;
     owned.assign(dofs.size(), 0);
     for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -858,7 +968,7 @@ namespace anvil::Contact
     // This step's springs start from zero, last step's become the old
     // ones (the work, the friction's history): only the nodes that had a
     // spring or a gradient force in the last two steps are touched (as
-    // start_pass() does for the whole surface).
+    // pass() does for its own nodes).
     {
       // Entries (width per node) of the nodes @p before are cleared in
       // @p old, those of @p now move from @p current to @p old.
@@ -1002,7 +1112,7 @@ namespace anvil::Contact
                 {
                   if (!(mine(n[0]) || mine(n[1]) || mine(n[2]) || mine(n[3])))
                     continue;
-                  update_segment(slave, seg, x);
+                  slave.update_segment(seg, x);
                 }
               for (const unsigned int j : n)
                 mark(j);
@@ -1048,7 +1158,7 @@ namespace anvil::Contact
           }
       }
 
-    // The own terms of the springs' work (book_spring_work()), over the
+    // The own terms of the springs' work (spring_work_step()), over the
     // nodes with a spring or a gradient force in this step or the last
     // (the replay puts them in order).
     const std::size_t n_contact = (records.size() - header_size) / contact_record_size;
@@ -1186,62 +1296,80 @@ namespace anvil::Contact
                             const std::vector<double> &x,
                             const std::vector<double> &v,
                             const double               dt,
-                            std::vector<double>       &f,
                             ContactResult             &result)
   {
-    const Surface &slave          = surface[slave_index];
-    const Surface &master         = surface[1 - slave_index];
-    const bool     slave_is_first = slave_index == 0;
-    const bool     needs_v        = needs_velocities();
-    std::vector<double> &ft       = tangential_force[slave_index];
-    std::vector<int>    &partners = partner[slave_index];
-    // Friction forces of nodes that leave contact this step are released.
+    const Surface       &slave          = surface[slave_index];
+    const unsigned int   master_index   = 1 - slave_index;
+    const Surface       &master         = surface[master_index];
+    const Halo          &h              = *halo;
+    const bool           slave_is_first = slave_index == 0;
+    const bool           needs_v        = needs_velocities();
+    std::vector<double> &ft             = tangential_force[slave_index];
+    std::vector<int>    &partners       = partner[slave_index];
+    const auto          &own            = h.own_nodes[slave_index];
+    // This step's springs (and friction forces) of the own nodes start
+    // from zero; last step's are kept for the work and the friction's
+    // history. (Those of a node that leaves contact are released.)
     std::vector<double> &ft_old = previous_tangential_force;
+    auto shift = [&](std::vector<double> &current, std::vector<double> &old, const unsigned int width) {
+      if (old.size() != current.size())
+        old.assign(current.size(), 0.);
+      for (const unsigned int i : own)
+        for (unsigned int d = 0; d < width; ++d)
+          {
+            old[width * i + d]     = current[width * i + d];
+            current[width * i + d] = 0;
+          }
+    };
     if (needs_v)
-      start_pass(ft, ft_old);
-    start_pass(spring_force[slave_index], old_spring_force);
-    start_pass(spring_depth[slave_index], old_spring_depth);
-    start_pass(geometric_force[slave_index], old_geometric_force);
+      shift(ft, ft_old, 3);
+    shift(spring_force[slave_index], last_spring_force[slave_index], 1);
+    shift(spring_depth[slave_index], last_spring_depth[slave_index], 1);
     auto pos = [&](const unsigned int i) -> Vec {
       return {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
     };
 
     // @sect4{Step (1): nearest master node}
-    // The master surface's box and how far its nodes moved since the
-    // search tree was built; a rebuild packs the tree in one go
-    // (O(n log n)) when the motion exceeds the safety distance.
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    double max_depth = 0, drift2 = 0;
-    const bool fresh = search.built.empty();
-    for (const unsigned int i : master.nodes)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            lo[d] = std::min(lo[d], x[3 * i + d]);
-            hi[d] = std::max(hi[d], x[3 * i + d]);
-            if (!fresh)
-              d2 += (x[3 * i + d] - search.built[3 * i + d]) * (x[3 * i + d] - search.built[3 * i + d]);
-          }
-        drift2 = std::max(drift2, d2);
-      }
-    for (unsigned int k = 0; k < master.segments.size(); ++k)
-      if (master.active[k])
-        max_depth = std::max(max_depth, master.volume[k] / master.area[k]);
-    if (master.nodes.empty())
+    // The tree over the master nodes this rank sees, kept while they are
+    // the same and none has moved more than the safety distance since it
+    // was packed (O(n log n)).
+    const auto &tree_nodes = h.nodes[master_index];
+    if (tree_nodes.empty())
       return;
-    double drift = std::sqrt(drift2);
-    if (fresh || drift > search.safety)
+    double drift = 0;
+    bool   build = search.nodes != tree_nodes;
+    if (!build)
+      {
+        double drift2 = 0;
+        for (const unsigned int i : tree_nodes)
+          {
+            double d2 = 0;
+            for (unsigned int d = 0; d < 3; ++d)
+              d2 += (x[3 * i + d] - search.built[3 * i + d]) * (x[3 * i + d] - search.built[3 * i + d]);
+            drift2 = std::max(drift2, d2);
+          }
+        drift = std::sqrt(drift2);
+        build = drift > search.safety;
+      }
+    if (build)
       {
         std::vector<Value> values;
-        values.reserve(master.nodes.size());
-        for (const unsigned int i : master.nodes)
-          values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+        values.reserve(tree_nodes.size());
+        search.built.resize(x.size());
+        for (const unsigned int i : tree_nodes)
+          {
+            values.emplace_back(BPoint(x[3 * i], x[3 * i + 1], x[3 * i + 2]), i);
+            for (unsigned int d = 0; d < 3; ++d)
+              search.built[3 * i + d] = x[3 * i + d];
+          }
         search.tree  = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
-        search.built = x;
+        search.nodes = tree_nodes;
         drift        = 0;
       }
-    const auto &tree = search.tree;
+    const auto  &tree      = search.tree;
+    const double *lo       = h.box[master_index], *hi = h.box[master_index] + 3;
+    const double max_depth = h.max_depth[master_index];
+    const double reach     = h.reach[master_index];
 
     // Step (3), seed Eqs. (54)-(55): Newton iterations for the closest
     // point r(xi, eta) of the bilinear segment to t:
@@ -1282,7 +1410,8 @@ namespace anvil::Contact
     };
 
     std::vector<Value> nearest;
-    for (const unsigned int s : slave.nodes)
+    const unsigned long key_base = static_cast<unsigned long>(master_index) * dofs.size();
+    for (const unsigned int s : own)
       {
         const int previous = partners[s];
         partners[s]        = -1;
@@ -1296,32 +1425,40 @@ namespace anvil::Contact
             t.y < lo[1] - max_depth || t.y > hi[1] + max_depth ||
             t.z < lo[2] - max_depth || t.z > hi[2] + max_depth)
           continue;
+        // The nearest master node, exactly, and of equally near ones the
+        // lowest: the nearest node d0 of the tree (at its packing
+        // positions) bounds the true nearest one's packing distance by d0 +
+        // 2 drift; those candidates are compared where they are now. The
+        // choice does not depend on the tree, so not on which nodes a rank
+        // sees beyond the reach, nor on when the tree was packed.
         nearest.clear();
-        tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1),
-                   std::back_inserter(nearest));
+        tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1), std::back_inserter(nearest));
+        if (nearest.empty())
+          continue;
         unsigned int m = nearest[0].second;
-        if (drift > 0)
-          {
-            // The true nearest node is among those within d0 + 2 drift of
-            // t at their build positions; compare them where they are now.
-            const double d0 = bg::distance(nearest[0].first, BPoint(t.x, t.y, t.z));
-            const double r  = d0 + 2. * drift;
-            nearest.clear();
-            tree.query(bgi::intersects(bg::model::box<BPoint>(BPoint(t.x - r, t.y - r, t.z - r),
-                                                              BPoint(t.x + r, t.y + r, t.z + r))),
-                       std::back_inserter(nearest));
-            double best_d2 = 1e300;
-            for (const auto &[p, i] : nearest)
-              {
-                const Vec    g  = t - pos(i);
-                const double d2 = dot(g, g);
-                if (d2 < best_d2 || (d2 == best_d2 && i < m))
-                  {
-                    best_d2 = d2;
-                    m       = i;
-                  }
-              }
-          }
+        {
+          const double d0 = bg::distance(nearest[0].first, BPoint(t.x, t.y, t.z));
+          const double r  = (d0 + 2. * drift) * (1. + 1e-12);
+          nearest.clear();
+          tree.query(bgi::intersects(bg::model::box<BPoint>(BPoint(t.x - r, t.y - r, t.z - r),
+                                                            BPoint(t.x + r, t.y + r, t.z + r))),
+                     std::back_inserter(nearest));
+          double best_d2 = 1e300;
+          for (const auto &[p, i] : nearest)
+            {
+              const Vec    g  = t - pos(i);
+              const double d2 = dot(g, g);
+              if (d2 < best_d2 || (d2 == best_d2 && i < m))
+                {
+                  best_d2 = d2;
+                  m       = i;
+                }
+            }
+          // Beyond the reach of every master node: no segment is within
+          // reach either (Halo).
+          if (!(best_d2 <= reach * reach))
+            continue;
+        }
 
         // @sect4{Step (2): candidate segments, seed Eqs. (50)-(53)}
         // For each segment S_i around m, C_i and C_{i+1} are its two edges
@@ -1353,6 +1490,8 @@ namespace anvil::Contact
         auto consider = [&](const unsigned int seg) {
           if (!master.active[seg])
             return;
+          if (!h.sees(master_index, seg))
+            return; // beyond the reach (Halo): not in this rank's halo
           const auto  &n = master.segments[seg];
           // The two edges at the segment's node nearest to t (m, where m
           // is one of its nodes).
@@ -1465,20 +1604,27 @@ namespace anvil::Contact
         // (see stable_frequency_squared()): the spring k (n . (u_s - sum_j
         // phi_j u_j))^2 adds k |w_a| sum_b |w_b| to the row of each of its
         // nodes a, with w = (1, -phi_j) over the nodes that move (a rigid
-        // body's do not: its mass is the body's).
-        {
-          const double w_master = master.rigid ? 0. :
-                                    std::abs(phi[0]) + std::abs(phi[1]) + std::abs(phi[2]) +
-                                      std::abs(phi[3]);
-          const double w_sum    = (slave.rigid ? 0. : 1.) + w_master;
-          if (!slave.rigid)
-            spring_load[s] += k * w_sum;
-          if (!master.rigid)
-            for (unsigned int j = 0; j < 4; ++j)
-              spring_load[n[j]] += k * std::abs(phi[j]) * w_sum;
-        }
+        // body's do not: its mass is the body's). apply_touches() adds it.
+        Touch touch;
+        touch.key     = key_base + s;
+        touch.node    = s;
+        touch.segment = chosen;
+        touch.flags   = 0;
+        for (unsigned int j = 0; j < 4; ++j)
+          touch.phi[j] = phi[j];
+        touch.k     = k;
+        touch.w_sum = (slave.rigid ? 0. : 1.) +
+                      (master.rigid ? 0. : std::abs(phi[0]) + std::abs(phi[1]) + std::abs(phi[2]) + std::abs(phi[3]));
+        touch.l         = l;
+        touch.normal[0] = nn.x;
+        touch.normal[1] = nn.y;
+        touch.normal[2] = nn.z;
+        touch.force[0] = touch.force[1] = touch.force[2] = 0;
         if (!(l < 0))
-          continue;
+          {
+            touches.push_back(touch);
+            continue;
+          }
         partners[s] = chosen;
         spring_force[slave_index][s] = -k * l;
         spring_depth[slave_index][s] = -l;
@@ -1497,19 +1643,14 @@ namespace anvil::Contact
         const Vec fs = interface_forces(*this, s, l, nn, k, vr, dt,
                                         node_mass.empty() ? 0. : node_mass[s], ft_old, ft, result, ff);
         // A force on the slave node, its reaction on the master nodes by
-        // the segment's shape functions at the contact point (Eq. (60)).
+        // the segment's shape functions at the contact point (Eq. (60)),
+        // applied by apply_touches().
         const Vec total = fs + ff;
-        f[3 * s] += total.x;
-        f[3 * s + 1] += total.y;
-        f[3 * s + 2] += total.z;
-        if (!floored) // against a rigid surface (see add_stiffness_gradient)
-          add_stiffness_gradient(slave_index, s, nn.x, nn.y, nn.z, l, x, f);
-        for (unsigned int j = 0; j < 4; ++j)
-          {
-            f[3 * n[j]] -= phi[j] * total.x;
-            f[3 * n[j] + 1] -= phi[j] * total.y;
-            f[3 * n[j] + 2] -= phi[j] * total.z;
-          }
+        touch.force[0]  = total.x;
+        touch.force[1]  = total.y;
+        touch.force[2]  = total.z;
+        touch.flags     = floored ? 1 : 3; // against a rigid surface, the gradient term
+        touches.push_back(touch);
         const double sign = slave_is_first ? 1. : -1.;
         result.friction_on_first[0] += sign * ff.x;
         result.friction_on_first[1] += sign * ff.y;
@@ -1518,7 +1659,6 @@ namespace anvil::Contact
         result.force_on_first[1] += sign * fs.y;
         result.force_on_first[2] += sign * fs.z;
       }
-    book_spring_work(slave_index, x);
   }
 
 

@@ -62,20 +62,32 @@ namespace anvil::Contact
     /** The thickest element's reference thickness V / A (the reach of an
         analytic shape's search). Units: m. */
     double max_reference_depth = 0;
+    /** The thinnest element's reference thickness (the search trees'
+        safety distance). Units: m. */
+    double min_reference_depth = 0;
     /** Work arrays of update_geometry() near an analytic shape. */
     std::vector<char>         seen;
     std::vector<unsigned int> touched;
+
+    /** Area, area vector and pressure modulus of segment @p k at the
+        positions @p x (3 per pair node). */
+    void update_segment(unsigned int k, const std::vector<double> &x);
+    /** The sums of node @p i over its active segments (their geometry
+        made first). */
+    void update_node(unsigned int i);
   };
 
   /**
    * A contact pair: each body's surface is master for the other's nodes
    * (the symmetric penalty method). The pair's surfaces are known on every
-   * rank, in an order fixed by the reference coordinates. Between two
-   * meshes every rank evaluates the whole pair on the same gathered
-   * positions and keeps the forces of the nodes it owns; against a rigid
-   * body's analytic shape each rank evaluates its own nodes only
-   * (distribute()). Either way the result does not depend on the number of
-   * processes.
+   * rank, in an order fixed by the reference coordinates. Each rank
+   * evaluates the slave nodes it owns (distribute()): between two
+   * deformable meshes against the master segments within reach, which the
+   * other ranks send it (a halo, found by boxes); against a rigid body's
+   * analytic shape on its own and ghost cells. A pair with a rigid body's
+   * mesh is evaluated whole on every rank, on gathered positions. Either
+   * way the motion does not depend on the number of processes, bit for
+   * bit.
    */
   class PenaltyContact : public Algorithm
   {
@@ -164,15 +176,60 @@ namespace anvil::Contact
         their positions when it was built), kept from step to step. */
     struct SearchTree;
 
-    /** One pass: nodes of surface @p s against the segments of the
-        other surface. */
+    /**
+     * What a pass found for one slave node within reach of a master
+     * segment: the spring's terms that the nodes' forces and the stable
+     * step need, applied to the nodes in the order of one process
+     * (apply_touches()) by whichever rank owns them.
+     */
+    struct Touch
+    {
+      /** The order of one process: the pass (0: the second body's nodes,
+          1: the first's) times the pair's nodes, plus the slave node. */
+      unsigned long key;
+      unsigned int  node, segment;
+      /** 1: in contact (a force), 2: besides, the gradient term of a
+          stiffness that follows the geometry (add_stiffness_gradient()). */
+      unsigned int flags;
+      /** The segment's shape functions at the contact point. */
+      double phi[4];
+      /** Normal and friction force on the slave node. Units: N. */
+      double force[3];
+      /** The spring's stiffness and its weight sum (stable step). */
+      double k, w_sum;
+      /** Penetration and normal (the gradient term). */
+      double l, normal[3];
+    };
+
+    /** One pass: the own nodes of surface @p s against the segments of
+        the other surface; a Touch per node within reach (in @p touches),
+        the pass's sums in @p result, the slave nodes' state. */
     void pass(unsigned int               s,
               SearchTree                &search,
               const std::vector<double> &x,
               const std::vector<double> &v,
               double                     dt,
-              std::vector<double>       &f,
               ContactResult             &result);
+
+    /** Forces and spring loads of this rank's nodes from all touches (own
+        and received), in the order of one process. */
+    void apply_touches(const std::vector<double> &x, std::vector<double> &f);
+    std::vector<Touch> touches;
+
+    /** Between two deformable meshes, the exchange of a distributed pair
+        (distribute()): the halo of master segments, the touches. */
+    struct Halo;
+    std::shared_ptr<Halo> halo;
+    /** Make the halo: over @p comm, this rank owning the pair nodes in
+        @p owned_dofs (MPI_COMM_SELF: every node, nothing exchanged). */
+    void setup_halo(MPI_Comm comm, const dealii::IndexSet *owned_dofs);
+    /** This step's positions (and velocities) of the master segments
+        within reach of this rank's slave nodes, from the ranks that own
+        them; the geometry of the segments this rank sees. */
+    void exchange_halo(const std::vector<double> &x, const std::vector<double> &v);
+    /** Send the touches to the owners of their master nodes, receive
+        theirs. */
+    void exchange_touches();
 
     /** The current areas, tributary area vectors, moduli and thicknesses
         of surface @p s at positions @p x. */
@@ -184,10 +241,13 @@ namespace anvil::Contact
     std::vector<unsigned int>          near_nodes;
     std::vector<std::array<double, 4>> near_gaps;
 
-    /** Book the work on the penalty springs of pass @p s (the slave
-        surface) from last step's and this step's spring forces and
-        penetrations. */
-    void book_spring_work(unsigned int s, const std::vector<double> &x);
+    /** The work this step on the penalty springs of pass @p s (the slave
+        surface, its own nodes) from last step's and this step's spring
+        forces and penetrations. */
+    double spring_work_step(unsigned int s) const;
+    /** The work this step of the gradient forces of pass @p s (against a
+        rigid mesh) over the nodes' motion since @p previous_position. */
+    double gradient_work_step(unsigned int s, const std::vector<double> &x) const;
 
     /** Add -1/2 l^2 grad kappa of slave node @p i of surface @p
         slave_index (pressed along the normal (nx, ny, nz) against a rigid
@@ -218,6 +278,13 @@ namespace anvil::Contact
         (3 per pair node), and the positions of the last evaluation: their
         work is part of the spring work. */
     std::vector<double> geometric_force[2], old_geometric_force, previous_position;
+    /** The mesh passes' spring forces, penetrations and gradient forces of
+        the last step (per pass: both are booked after both are made). */
+    std::vector<double> last_spring_force[2], last_spring_depth[2], last_geometric_force[2];
+    /** The pair nodes whose spring load this evaluation set (cleared at
+        the next), and a mark per node. */
+    std::vector<unsigned int> loaded;
+    std::vector<char>         load_mark;
     /** Work done on the penalty springs so far. Units: J. */
     double spring_work = 0;
     std::vector<double> node_mass;
