@@ -1298,7 +1298,7 @@ namespace anvil::Contact
                             const double               dt,
                             ContactResult             &result)
   {
-    const Surface       &slave          = surface[slave_index];
+    Surface             &slave          = surface[slave_index];
     const unsigned int   master_index   = 1 - slave_index;
     const Surface       &master         = surface[master_index];
     const Halo          &h              = *halo;
@@ -1415,15 +1415,18 @@ namespace anvil::Contact
       {
         const int previous = partners[s];
         partners[s]        = -1;
-        // A node whose every segment is eroded is no longer on the surface.
-        if (!(slave.node_area[s] > 0))
-          continue;
-        const Vec t = pos(s);
+        const Vec t        = pos(s);
         // Cheap rejection: outside the master surface's box by more than
         // the deepest admissible penetration.
         if (t.x < lo[0] - max_depth || t.x > hi[0] + max_depth ||
             t.y < lo[1] - max_depth || t.y > hi[1] + max_depth ||
             t.z < lo[2] - max_depth || t.z > hi[2] + max_depth)
+          continue;
+        // The node's tributary area and the like (its segments' geometry
+        // is made); a node whose every segment is eroded is no longer on
+        // the surface.
+        slave.update_node(s);
+        if (!(slave.node_area[s] > 0))
           continue;
         // The nearest master node, exactly, and of equally near ones the
         // lowest: the nearest node d0 of the tree (at its packing

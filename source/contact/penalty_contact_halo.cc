@@ -122,7 +122,9 @@ namespace anvil::Contact
 
   // @sect3{The halo of a step}
   //
-  // The geometry of the segments the rank knows, the extents of all ranks
+  // The geometry of the segments the rank knows (the sums of a slave node
+  // are made when it comes within the master surface's box), the extents
+  // of all ranks
   // (one gather of 16 numbers each), then the segments within the halo's
   // radius of each rank's own slave nodes from the ranks that send them.
   // Which ranks send to which follows from the extents alone, so every
@@ -138,8 +140,6 @@ namespace anvil::Contact
         for (const unsigned int k : h.local_segments[s])
           if (surf.active[k])
             surf.update_segment(k, x);
-        for (const unsigned int i : h.own_nodes[s])
-          surf.update_node(i);
       }
 
     // Per surface: the box of the own nodes (-lo, hi), the deepest active

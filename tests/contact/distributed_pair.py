@@ -1,0 +1,105 @@
+"""Contact between two meshes, evaluated where the slave nodes are owned:
+np = 2, 3 and 4 against np = 1.
+
+A steel block (14 x 14 x 4 elements) slides at (3, 1, -20) m/s onto a
+larger, coarser one (6 x 6 x 3), off-centre, with Coulomb friction (mu_s =
+0.3, mu_d = 0.2), and rebounds. A master node of the coarse face takes the
+reactions of a dozen slave nodes, so a sum in another order would show. On two processes each block is a partition of its own:
+every slave node's master segments come from the other rank (the halo),
+and every reaction goes back. On three and four the contact faces
+themselves are split, so a slave node's segments come from two ranks and
+its reactions go to several.
+
+Checks:
+1. Every node's displacement and velocity at the end (the last frame, in
+   double precision) are bitwise those of one process: largest
+   difference 0.
+2. The contact force history agrees to 1e-8 of its peak (the pair's sums
+   are added over the ranks; the motion does not depend on them).
+3. No external force acts: the total momentum stays that of the start,
+   to 1e-12 of its magnitude (the slave's force and the reactions on the
+   master nodes, by the segment's shape functions, cancel).
+4. On two or more processes touches crossed partitions (the halo was in
+   use), and the contact force rose above 50 MN (the blocks met).
+"""
+import os
+from anvil_test import (Checker, arguments, elastic_box_body, max_relative_difference, read_csv, run_anvil,
+                        write_scene)
+from anvil_vtu import arrays, read_grid  # (anvil_test puts scripts/ on the path)
+
+args = arguments()
+c = Checker("contact between two meshes on 1-4 processes")
+
+scene = write_scene(os.path.join(args.work_dir, "blocks.prm"), text=(
+    "set Bodies = lower, upper\nset Contact pairs = press\nset Probes = a, b\n"
+    + elastic_box_body("lower", (0, 0, 0), (1, 1, 0.3), (6, 6, 3), 7850, 2.06e11, 0.3)
+    + elastic_box_body("upper", (0.23, 0.17, 0.3001), (0.83, 0.77, 0.6), (14, 14, 4), 7850, 2.06e11, 0.3)
+    + """subsection Body upper
+  set Initial velocity = 3, 1, -20
+end
+subsection Contact pair press
+  set First body  = lower
+  set Second body = upper
+  set Static friction coefficient  = 0.3
+  set Dynamic friction coefficient = 0.2
+end
+subsection Probe a
+  set Point = 0.5, 0.5, 0.3
+end
+subsection Probe b
+  set Point = 0.53, 0.47, 0.3001
+end
+subsection Simulation
+  set End time = 4e-4
+  set History interval = 1e-6
+  set Output interval = 4e-4
+  set Print wall times = false
+end
+"""))
+
+runs = {}
+for np in (1, 2, 3, 4):
+    work = os.path.join(args.work_dir, f"np{np}")
+    os.makedirs(work, exist_ok=True)
+    code, out, err = run_anvil(args.anvil, scene, np=np, cwd=work)
+    if not c.check_true(f"np = {np} exits 0", code == 0, err.strip()[-400:]):
+        c.finish()
+    runs[np] = os.path.join(work, "output", "blocks")
+
+
+def summary(np):
+    with open(os.path.join(runs[np], "summary.csv")) as fh:
+        return dict(line.strip().split(",") for line in fh.readlines()[1:])
+
+
+def final_state(np):
+    """{node id: (displacement, velocity)} of the last frame, all pieces."""
+    grid = read_grid(os.path.join(runs[np], "solution_0001.pvtu"))
+    point = arrays(grid.GetPointData())
+    return {int(i): tuple(u) + tuple(v)
+            for i, u, v in zip(point["node_id"], point["displacement"], point["velocity"])}
+
+
+reference = {name: read_csv(os.path.join(runs[1], name + ".csv")) for name in ("contact_press",)}
+state = final_state(1)
+for np in (2, 3, 4):
+    other = final_state(np)
+    worst = max(max(abs(a - b) for a, b in zip(state[i], other[i])) for i in state) \
+        if set(other) == set(state) else float("inf")
+    c.check_below(f"np = {np}: largest difference of a node's displacement or velocity at the end "
+                  f"({len(state)} nodes)", worst, 0.0)
+    c.check_below(f"np = {np}: contact force history, largest relative difference",
+                  max_relative_difference(reference["contact_press"],
+                                          read_csv(os.path.join(runs[np], "contact_press.csv"))), 1e-8)
+    crossed = int(summary(np).get("contact_springs_across_partitions", "0"))
+    c.check_true(f"np = {np}: touches crossed partitions ({crossed})", crossed > 0)
+
+for np in (1, 4):
+    m = read_csv(os.path.join(runs[np], "momentum.csv"))
+    p0 = (m["px"][0] ** 2 + m["py"][0] ** 2 + m["pz"][0] ** 2) ** 0.5
+    drift = max(((m["px"][i] - m["px"][0]) ** 2 + (m["py"][i] - m["py"][0]) ** 2
+                 + (m["pz"][i] - m["pz"][0]) ** 2) ** 0.5 for i in range(len(m["px"])))
+    c.check_below(f"np = {np}: change of the total momentum / its magnitude", drift / p0, 1e-12)
+peak = float(summary(1)["peak_contact_force_N"])
+c.check_true(f"the blocks met: peak contact force {peak:.4g} N > 5e7 N", peak > 5e7)
+c.finish()
