@@ -106,7 +106,7 @@ def main():
     p.add_argument("--repeat", type=int, default=1,
                    help="with --efficiency: time each scene this many times on one and on two "
                         "processes, in turn, and keep the fastest of each (these shared machines "
-                        "run the same work up to 1.5 times slower for minutes at a time)")
+                        "run the same work up to 60 % slower for minutes at a time)")
     a = p.parse_args()
     anvil = os.path.abspath(a.anvil)
     lib = os.path.abspath(a.library or os.path.join(os.path.dirname(anvil), "benchmarks", "libanvil_mpi_counts.so"))

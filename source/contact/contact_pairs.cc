@@ -146,11 +146,12 @@ namespace anvil::Contact
 
   // @sect3{Contact}
   //
-  // Positions of each pair's nodes are gathered to every rank, every rank
-  // evaluates the pair, and each keeps the forces on the nodes it owns. A
-  // distributed pair (against an analytic shape) reads the positions of the
-  // rank's own and ghost cells instead and sets the forces of its own nodes;
-  // it returns the whole pair's figures on every rank all the same.
+  // A distributed pair (two deformable meshes, or against an analytic
+  // shape) reads the positions of the rank's own and ghost cells and sets
+  // the forces of its own nodes; it returns the whole pair's figures on
+  // every rank. Any other pair (a rigid body's mesh) has its nodes'
+  // positions gathered to every rank, every rank evaluates it whole, and
+  // each keeps the forces on the nodes it owns.
   double ContactPairs::add_forces(const double dt_previous)
   {
     const VectorType &position         = get_position();

@@ -615,6 +615,7 @@ namespace anvil::Contact
       for (unsigned int s = 0; s < 2; ++s)
         start_pass(geometric_force[s], last_geometric_force[s]);
     touches.clear();
+    touch_normals.clear();
     // Pass 1: the second body's nodes against the first body's segments.
     pass(1, *search[0], xh, vh, dt, result);
     // Pass 2 (symmetric): the first body's nodes against the second's.
@@ -690,25 +691,35 @@ namespace anvil::Contact
         list = &all;
       }
     const unsigned long n = dofs.size();
-    for (const Touch &t : *list)
+    for (std::size_t q = 0; q < list->size(); ++q)
       {
+        const Touch       &t           = (*list)[q];
         const unsigned int slave_index = 1 - static_cast<unsigned int>(t.key / n);
+        const unsigned int node        = t.key % n;
         const Surface     &slave       = surface[slave_index];
         const Surface     &master      = surface[1 - slave_index];
         const auto        &nodes       = master.segments[t.segment];
-        if (!slave.rigid && mine(t.node))
-          load(t.node, t.k * t.w_sum);
+        // The spring's weight sum |w_a| sum_b |w_b| (see pass()).
+        const double w_sum = (slave.rigid ? 0. : 1.) +
+                             (master.rigid ? 0. :
+                                             std::abs(t.phi[0]) + std::abs(t.phi[1]) + std::abs(t.phi[2]) +
+                                               std::abs(t.phi[3]));
+        if (!slave.rigid && mine(node))
+          load(node, t.k * w_sum);
         if (!master.rigid)
           for (unsigned int j = 0; j < 4; ++j)
             if (mine(nodes[j]))
-              load(nodes[j], t.k * std::abs(t.phi[j]) * t.w_sum);
+              load(nodes[j], t.k * std::abs(t.phi[j]) * w_sum);
         if (!(t.flags & 1))
           continue;
-        if (mine(t.node))
+        if (mine(node))
           for (unsigned int d = 0; d < 3; ++d)
-            f[3 * t.node + d] += t.force[d];
-        if (t.flags & 2) // (a rigid body's mesh: every rank evaluates the whole pair)
-          add_stiffness_gradient(slave_index, t.node, t.normal[0], t.normal[1], t.normal[2], t.l, x, f);
+            f[3 * node + d] += t.force[d];
+        if (t.flags & 2) // (a rigid body's mesh: every rank evaluates the whole pair, in order)
+          {
+            const auto &g = touch_normals[q];
+            add_stiffness_gradient(slave_index, node, g[1], g[2], g[3], g[0], x, f);
+          }
         for (unsigned int j = 0; j < 4; ++j)
           if (mine(nodes[j]))
             for (unsigned int d = 0; d < 3; ++d)
@@ -1610,19 +1621,14 @@ namespace anvil::Contact
         // body's do not: its mass is the body's). apply_touches() adds it.
         Touch touch;
         touch.key     = key_base + s;
-        touch.node    = s;
         touch.segment = chosen;
         touch.flags   = 0;
         for (unsigned int j = 0; j < 4; ++j)
           touch.phi[j] = phi[j];
-        touch.k     = k;
-        touch.w_sum = (slave.rigid ? 0. : 1.) +
-                      (master.rigid ? 0. : std::abs(phi[0]) + std::abs(phi[1]) + std::abs(phi[2]) + std::abs(phi[3]));
-        touch.l         = l;
-        touch.normal[0] = nn.x;
-        touch.normal[1] = nn.y;
-        touch.normal[2] = nn.z;
+        touch.k        = k;
         touch.force[0] = touch.force[1] = touch.force[2] = 0;
+        if (master.rigid || slave.rigid)
+          touch_normals.push_back({{l, nn.x, nn.y, nn.z}});
         if (!(l < 0))
           {
             touches.push_back(touch);

@@ -1,7 +1,8 @@
 /**
  * @file
  * The contact pairs of a scene as one family: their surfaces (every boundary
- * face of the two bodies), the gather of the pair's node positions, the
+ * face of the two bodies), the positions of the pair's nodes (the rank's
+ * own and ghost cells', or gathered for a pair that is not distributed), the
  * evaluation by each pair's algorithm (Contact::Algorithm), the forces on
  * the owned nodes, the springs' bound on the step, contact_NAME.csv and the
  * pairs' part of a checkpoint.
@@ -41,8 +42,8 @@ namespace anvil::Contact
     /** The surfaces: each rank lists the boundary faces of its own cells,
         all ranks then hold the whole surface; the pair nodes' masses. */
     void initialize() override;
-    /** Gather each active pair's node positions (and velocities), evaluate
-        it, add the forces of the owned nodes. The springs bound the step
+    /** Each active pair's node positions (and velocities) to it, its
+        evaluation, the forces of the owned nodes. The springs bound the step
         through frequency_squared(), not through the returned value. */
     double add_forces(double dt) override;
     std::string describe() const override;

@@ -13,7 +13,8 @@
  * compute_forces() and scatters the forces to the nodes each rank owns; an
  * algorithm sees only the pair's nodes, in the order of node_dofs(). An
  * algorithm that can evaluate each rank's share alone says so in
- * distribute(); its pair is then not gathered.
+ * distribute(); its pair is then not gathered (Anvil's penalty pair does,
+ * but with a rigid body's mesh).
  */
 #pragma once
 

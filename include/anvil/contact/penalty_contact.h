@@ -187,18 +187,17 @@ namespace anvil::Contact
       /** The order of one process: the pass (0: the second body's nodes,
           1: the first's) times the pair's nodes, plus the slave node. */
       unsigned long key;
-      unsigned int  node, segment;
+      unsigned int  segment;
       /** 1: in contact (a force), 2: besides, the gradient term of a
-          stiffness that follows the geometry (add_stiffness_gradient()). */
+          stiffness that follows the geometry (add_stiffness_gradient();
+          its penetration and normal are in touch_normals). */
       unsigned int flags;
       /** The segment's shape functions at the contact point. */
       double phi[4];
       /** Normal and friction force on the slave node. Units: N. */
       double force[3];
-      /** The spring's stiffness and its weight sum (stable step). */
-      double k, w_sum;
-      /** Penetration and normal (the gradient term). */
-      double l, normal[3];
+      /** The spring's stiffness. Units: N/m. */
+      double k;
     };
 
     /** One pass: the own nodes of surface @p s against the segments of
@@ -215,6 +214,10 @@ namespace anvil::Contact
         and received), in the order of one process. */
     void apply_touches(const std::vector<double> &x, std::vector<double> &f);
     std::vector<Touch> touches;
+    /** Per touch, its penetration and normal, against a rigid body's mesh
+        only (its gradient term; such a pair is evaluated whole by every
+        rank). */
+    std::vector<std::array<double, 4>> touch_normals;
 
     /** Between two deformable meshes, the exchange of a distributed pair
         (distribute()): the halo of master segments, the touches. */
