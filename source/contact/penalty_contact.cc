@@ -209,7 +209,9 @@ namespace anvil::Contact
         per pair node; the others' entries are not used). */
     std::vector<unsigned int> nodes;
     std::vector<double>       built;
-    double                    safety = 0;
+    /** Per pair node, whether it is in the tree. */
+    std::vector<char> in_tree;
+    double            safety = 0;
   };
 
 
@@ -1373,7 +1375,12 @@ namespace anvil::Contact
             for (unsigned int d = 0; d < 3; ++d)
               search.built[3 * i + d] = x[3 * i + d];
           }
-        search.tree  = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
+        search.tree = bgi::rtree<Value, bgi::rstar<16>>(values.begin(), values.end());
+        search.in_tree.resize(dofs.size(), 0);
+        for (const unsigned int i : search.nodes)
+          search.in_tree[i] = 0;
+        for (const unsigned int i : tree_nodes)
+          search.in_tree[i] = 1;
         search.nodes = tree_nodes;
         drift        = 0;
       }
@@ -1421,6 +1428,9 @@ namespace anvil::Contact
     };
 
     std::vector<Value> nearest;
+    // Per slave node, its nearest master node of the last step (a guess).
+    std::vector<unsigned int> &guess = nearest_guess[slave_index];
+    guess.resize(dofs.size(), ~0u);
     const unsigned long key_base = static_cast<unsigned long>(master_index) * dofs.size();
     for (const unsigned int s : own)
       {
@@ -1440,19 +1450,31 @@ namespace anvil::Contact
         if (!(slave.node_area[s] > 0))
           continue;
         // The nearest master node, exactly, and of equally near ones the
-        // lowest: the nearest node d0 of the tree (at its packing
-        // positions) bounds the true nearest one's packing distance by d0 +
-        // 2 drift; those candidates are compared where they are now. The
-        // choice does not depend on the tree, so not on which nodes a rank
-        // sees beyond the reach, nor on when the tree was packed.
-        nearest.clear();
-        tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1), std::back_inserter(nearest));
-        if (nearest.empty())
-          continue;
-        unsigned int m = nearest[0].second;
+        // lowest. A node at current distance d (last step's nearest, if the
+        // tree holds it) bounds the true nearest one's packing distance by
+        // d + drift; else the tree's nearest node d0 (at its packing
+        // positions) bounds it by d0 + 2 drift. Those candidates are
+        // compared where they are now. The choice does not depend on the
+        // tree or the guess, so not on which nodes a rank sees beyond the
+        // reach, nor on when the tree was packed.
+        unsigned int m     = guess[s];
+        double       bound = 0;
+        if (m < search.in_tree.size() && search.in_tree[m])
+          {
+            const Vec g = t - pos(m);
+            bound       = std::sqrt(dot(g, g)) + drift;
+          }
+        else
+          {
+            nearest.clear();
+            tree.query(bgi::nearest(BPoint(t.x, t.y, t.z), 1), std::back_inserter(nearest));
+            if (nearest.empty())
+              continue;
+            m     = nearest[0].second;
+            bound = bg::distance(nearest[0].first, BPoint(t.x, t.y, t.z)) + 2. * drift;
+          }
         {
-          const double d0 = bg::distance(nearest[0].first, BPoint(t.x, t.y, t.z));
-          const double r  = (d0 + 2. * drift) * (1. + 1e-12);
+          const double r = bound * (1. + 1e-12);
           nearest.clear();
           tree.query(bgi::intersects(bg::model::box<BPoint>(BPoint(t.x - r, t.y - r, t.z - r),
                                                             BPoint(t.x + r, t.y + r, t.z + r))),
@@ -1468,6 +1490,7 @@ namespace anvil::Contact
                   m       = i;
                 }
             }
+          guess[s] = m;
           // Beyond the reach of every master node: no segment is within
           // reach either (Halo).
           if (!(best_d2 <= reach * reach))

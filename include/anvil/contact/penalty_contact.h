@@ -214,6 +214,11 @@ namespace anvil::Contact
         and received), in the order of one process. */
     void apply_touches(const std::vector<double> &x, std::vector<double> &f);
     std::vector<Touch> touches;
+    /** Per pass (by slave surface) and slave node, its nearest master
+        node of the last evaluation (the search's first guess; ~0u:
+        none). Not part of the state: the nearest node does not depend on
+        it. */
+    std::vector<unsigned int> nearest_guess[2];
     /** Per touch, its penetration and normal, against a rigid body's mesh
         only (its gradient term; such a pair is evaluated whole by every
         rank). */
