@@ -28,6 +28,21 @@ namespace anvil::Contact
           return false;
       return true;
     }
+
+    /** The box (-lo, hi) of the nodes @p nodes at positions @p x (3 per
+        pair node) into @p e; of no node, an empty box. */
+    template <typename Nodes>
+    void node_box(const std::vector<double> &x, const Nodes &nodes, double *e)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        e[d] = e[3 + d] = -1e300;
+      for (const unsigned int i : nodes)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            e[d]     = std::max(e[d], -x[3 * i + d]);
+            e[3 + d] = std::max(e[3 + d], x[3 * i + d]);
+          }
+    }
   } // namespace
 
 
@@ -149,28 +164,18 @@ namespace anvil::Contact
       {
         const Surface &surf = surface[s];
         double        *e    = own + 8 * s;
-        for (unsigned int d = 0; d < 3; ++d)
-          e[d] = e[3 + d] = -1e300;
-        for (const unsigned int i : h.own_nodes[s])
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              e[d]     = std::max(e[d], -x[3 * i + d]);
-              e[3 + d] = std::max(e[3 + d], x[3 * i + d]);
-            }
+        node_box(x, h.own_nodes[s], e);
         double depth = 0, size = 0;
         for (const unsigned int k : h.sent_segments[s])
           {
             if (surf.active[k])
               depth = std::max(depth, surf.volume[k] / surf.area[k]);
-            double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-            for (const unsigned int i : surf.segments[k])
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  lo[d] = std::min(lo[d], x[3 * i + d]);
-                  hi[d] = std::max(hi[d], x[3 * i + d]);
-                }
-            size = std::max(size, std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                            (hi[2] - lo[2]) * (hi[2] - lo[2])));
+            double b[6];
+            node_box(x, surf.segments[k], b);
+            double d2 = 0;
+            for (unsigned int d = 0; d < 3; ++d)
+              d2 += (b[3 + d] + b[d]) * (b[3 + d] + b[d]);
+            size = std::max(size, std::sqrt(d2));
           }
         e[6] = depth;
         e[7] = size;
@@ -237,15 +242,8 @@ namespace anvil::Contact
       const double  *b    = extent(q, 1 - m);
       for (const unsigned int k : h.sent_segments[m])
         {
-          double e[8];
-          for (unsigned int d = 0; d < 3; ++d)
-            e[d] = e[3 + d] = -1e300;
-          for (const unsigned int i : surf.segments[k])
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                e[d]     = std::max(e[d], -x[3 * i + d]);
-                e[3 + d] = std::max(e[3 + d], x[3 * i + d]);
-              }
+          double e[6];
+          node_box(x, surf.segments[k], e);
           if (boxes_meet(e, 0., b, h.radius[m]))
             list.push_back(k);
         }
