@@ -1348,7 +1348,11 @@ namespace anvil::Contact
     // was packed (O(n log n)).
     const auto &tree_nodes = h.nodes[master_index];
     if (tree_nodes.empty())
-      return;
+      {
+        for (const unsigned int s : own)
+          partners[s] = -1;
+        return;
+      }
     double drift = 0;
     bool   build = search.nodes != tree_nodes;
     if (!build)
