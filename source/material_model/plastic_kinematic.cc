@@ -328,7 +328,12 @@ namespace anvil::MaterialModel
       for (unsigned int l = 0; l < W; ++l)
         if (std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], 1.))
           R[l] = law.rate_factor(rate[l]);
+    // A batch whose trial stresses are all within the yield surface keeps
+    // them (the return below would change nothing: dep = 0).
+    bool any_plastic = false;
     for (unsigned int l = 0; l < W; ++l)
+      any_plastic |= std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], R[l]);
+    for (unsigned int l = 0; l < W && any_plastic; ++l)
       {
         const double q      = std::sqrt(1.5) * norm[l];
         const double excess = q - law.yield_stress(eps_p[l], R[l]);
