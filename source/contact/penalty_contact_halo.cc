@@ -139,11 +139,10 @@ namespace anvil::Contact
   //
   // The geometry of the segments the rank knows (the sums of a slave node
   // are made when it comes within the master surface's box), the extents
-  // of all ranks
-  // (one gather of 16 numbers each), then the segments within the halo's
-  // radius of each rank's own slave nodes from the ranks that send them.
-  // Which ranks send to which follows from the extents alone, so every
-  // rank knows whom to wait for; a message may be empty.
+  // of all ranks (one gather of 16 numbers each), then the segments within
+  // the halo's radius of each rank's own slave nodes from the ranks that
+  // send them. Which ranks send to which follows from the extents alone,
+  // so every rank knows whom to wait for; a message may be empty.
   void PenaltyContact::exchange_halo(const std::vector<double> &x, const std::vector<double> &v)
   {
     Halo      &h       = *halo;
@@ -354,10 +353,12 @@ namespace anvil::Contact
 
   // @sect3{The touches}
   //
-  // A touch goes to every other rank that owns one of its segment's nodes;
-  // those ranks sent the segment (their nodes are within the halo of this
-  // rank), so the ranks this one receives touches from are those it sent
-  // segments to.
+  // A touch goes to every other rank that owns one of its segment's nodes.
+  // Such a rank's box of own nodes, grown by the largest segment, meets
+  // this rank's slave box grown by the halo's radius (the segment is in
+  // the halo), so it is one of the ranks this one receives segments from;
+  // conversely this rank receives touches from the ranks it sends
+  // segments to. (A touch to any other rank would be an internal error.)
   void PenaltyContact::exchange_touches()
   {
     Halo &h        = *halo;
