@@ -129,8 +129,10 @@ namespace anvil::Contact
                                  double                     dt,
                                  std::vector<double>       &f) override;
 
-    /** Against an analytic shape: evaluate this rank's own slave nodes
-        only (see analytic_pass()). Mesh against mesh: false. */
+    /** Evaluate this rank's own slave nodes only: against an analytic
+        shape (see analytic_pass()), or between two deformable meshes
+        against the halo (setup_halo()). A rigid body's mesh: false (the
+        pair is gathered). */
     bool distribute(MPI_Comm comm, const dealii::IndexSet &owned_dofs) override;
 
     /** Whether the pair needs velocities (friction or damping). */
