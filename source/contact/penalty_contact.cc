@@ -212,6 +212,8 @@ namespace anvil::Contact
     /** Per pair node, whether it is in the tree. */
     std::vector<char> in_tree;
     double            safety = 0;
+    /** Work array of the queries (kept: a step allocates nothing). */
+    std::vector<Value> candidates;
   };
 
 
@@ -1431,7 +1433,7 @@ namespace anvil::Contact
         }
     };
 
-    std::vector<Value> nearest;
+    auto &nearest = search.candidates;
     // Per slave node, its nearest master node of the last step (a guess).
     std::vector<unsigned int> &guess = nearest_guess[slave_index];
     guess.resize(dofs.size(), ~0u);

@@ -247,7 +247,7 @@ namespace anvil::Contact
             list.push_back(k);
         }
     };
-    std::vector<unsigned int> list[2];
+    auto &list = h.segment_list;
     h.send_buffer.resize(h.send_to.size());
     h.requests.resize(h.send_to.size());
     const unsigned int width = needs_v ? 7 : 4;

@@ -102,8 +102,10 @@ namespace anvil::Contact
     std::vector<std::vector<PenaltyContact::Touch>>   touch_buffer;
     std::vector<PenaltyContact::Touch>                received;
     std::vector<MPI_Request>                          requests;
-    /** Work array: a mark per pair node. */
-    std::vector<char> node_mark;
+    /** Work arrays: a mark per pair node; the segments sent to one rank,
+        per master surface. */
+    std::vector<char>         node_mark;
+    std::vector<unsigned int> segment_list[2];
     /** Touches sent to another rank this step. */
     unsigned int sent_touches = 0;
   };
