@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -197,17 +198,25 @@ namespace anvil::Element
           all.insert(all.end(), part.begin(), part.end());
         std::sort(all.begin(), all.end());
         all.erase(std::unique(all.begin(), all.end()), all.end());
+        // The rows of the step by element id, whatever the partition.
+        std::vector<std::array<double, 8>> step_rows;
         for (const auto &part : Utilities::MPI::gather(mpi_communicator, eroded_info, 0))
           for (std::size_t i = 0; i + 8 <= part.size(); i += 8)
             {
-              std::ostringstream row;
-              row << std::setprecision(10) << get_time() << ',' << (unsigned long)part[i] << ','
-                  << bodies[(unsigned int)part[i + 1]].name << ',' << part[i + 2] << ','
-                  << part[i + 3] << ',' << part[i + 4] << ',' << part[i + 5] << ','
-                  << part[i + 6] << ',' << part[i + 7];
-              rows.push_back(row.str());
-              ++eroded_so_far;
+              step_rows.emplace_back();
+              std::copy(part.begin() + i, part.begin() + i + 8, step_rows.back().begin());
             }
+        std::sort(step_rows.begin(), step_rows.end(),
+                  [](const auto &a, const auto &b) { return a[0] < b[0]; });
+        for (const auto &r : step_rows)
+          {
+            std::ostringstream row;
+            row << std::setprecision(10) << get_time() << ',' << (unsigned long)r[0] << ','
+                << bodies[(unsigned int)r[1]].name << ',' << r[2] << ',' << r[3] << ',' << r[4] << ','
+                << r[5] << ',' << r[6] << ',' << r[7];
+            rows.push_back(row.str());
+            ++eroded_so_far;
+          }
       }
     return all;
   }
