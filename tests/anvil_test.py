@@ -282,9 +282,10 @@ def elastic_material(density, E, nu):
 """
 
 
-def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
-    """Scene text of a body 'name': an elastic box from 'lower' to 'upper'
-    (3 numbers each) with 'subdivisions' (3 integers)."""
+def box_body(name, lower, upper, subdivisions, material):
+    """Scene text of a body 'name': a box from 'lower' to 'upper' (3
+    numbers each) with 'subdivisions' (3 integers), of the body's
+    'subsection Material' text 'material'."""
     join = lambda v: ", ".join(f"{x:g}" for x in v)
     return f"""subsection Body {name}
   subsection Mesh
@@ -293,8 +294,26 @@ def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
     set Upper corner = {join(upper)}
     set Subdivisions = {join(subdivisions)}
   end
-{elastic_material(density, E, nu)}end
+{material}end
 """
+
+
+def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
+    """An elastic box body (box_body with elastic_material)."""
+    return box_body(name, lower, upper, subdivisions, elastic_material(density, E, nu))
+
+
+def steel_box_body(name, lower, upper, subdivisions, erosion=False):
+    """A box body of the seed's Table 1 steel (plastic kinematic), with
+    failure and erosion if asked."""
+    return box_body(name, lower, upper, subdivisions, f"""  subsection Material
+    set Model = plastic kinematic
+    subsection plastic kinematic
+      set Preset = Table 1 steel
+      set Erosion = {'true' if erosion else 'false'}
+    end
+  end
+""")
 
 
 def dormant_rod_scene():

@@ -892,21 +892,18 @@ namespace anvil::Contact
     // Two meshes: each rank its own slave nodes against the master
     // segments of its halo; a rigid body's mesh (its nodes' gradient terms
     // reach past the halo) is evaluated whole by every rank.
-    if (!has_analytic(0) && !has_analytic(1))
-      {
-        if (surface[0].rigid || surface[1].rigid)
-          return false;
-        communicator = comm;
-        owned.assign(dofs.size(), 0);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          owned[i] = owned_dofs.is_element(dofs[i]);
-        setup_halo(comm, &owned_dofs);
-        return true;
-      }
+    const bool meshes = !has_analytic(0) && !has_analytic(1);
+    if (meshes && (surface[0].rigid || surface[1].rigid))
+      return false;
     communicator = comm;
     owned.assign(dofs.size(), 0);
     for (unsigned int i = 0; i < dofs.size(); ++i)
       owned[i] = owned_dofs.is_element(dofs[i]);
+    if (meshes)
+      {
+        setup_halo(comm, &owned_dofs);
+        return true;
+      }
     contact_state.assign(dofs.size(), {});
     target_mark.assign(dofs.size(), 0);
     state_nodes.clear();

@@ -35,7 +35,7 @@ Checks:
 """
 import os
 from anvil_test import (Checker, arguments, elastic_box_body, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+                        steel_box_body, write_scene)
 from anvil_vtu import arrays, read_grid  # (anvil_test puts scripts/ on the path)
 
 args = arguments()
@@ -140,34 +140,8 @@ subsection Simulation
   set Output interval = 1.5e-4
   set Print wall times = false
 end
-subsection Body plate
-  subsection Mesh
-    set Source = box
-    set Lower corner = -0.02, -0.02, 0
-    set Upper corner = 0.02, 0.02, 0.004
-    set Subdivisions = 16, 16, 2
-  end
-  subsection Material
-    set Model = plastic kinematic
-    subsection plastic kinematic
-      set Preset = Table 1 steel
-      set Erosion = true
-    end
-  end
-end
-subsection Body bar
-  subsection Mesh
-    set Source = box
-    set Lower corner = -0.005, -0.004, 0.0041
-    set Upper corner = 0.005, 0.006, 0.03
-    set Subdivisions = 4, 4, 10
-  end
-  subsection Material
-    set Model = plastic kinematic
-    subsection plastic kinematic
-      set Preset = Table 1 steel
-    end
-  end
+""" + steel_box_body("plate", (-0.02, -0.02, 0), (0.02, 0.02, 0.004), (16, 16, 2), erosion=True)
+    + steel_box_body("bar", (-0.005, -0.004, 0.0041), (0.005, 0.006, 0.03), (4, 4, 10)) + """subsection Body bar
   set Initial velocity = 20, 0, -600
 end
 subsection Boundary condition rim
