@@ -824,7 +824,11 @@ namespace anvil::MaterialModel
   {
     // Stored energy sigma : C^-1 : sigma_bar / 2 before the step, for the
     // dissipation.
-    const bool    viscous    = par.viscosity > 0 && dt > 0;
+    const bool viscous = par.viscosity > 0 && dt > 0;
+    // An undamaged point's effective stress is its stress (see the header;
+    // the batched update does not store it).
+    if (par.viscosity == 0 && h[i_tensile_damage] == 0 && h[i_compressive_damage] == 0)
+      std::copy(stress, stress + 6, h + i_effective_stress);
     const double *sref       = h + (viscous ? i_viscous_stress : i_effective_stress);
     const double  stored_old = stored_energy(stress, sref);
     double        old_stress[6];
@@ -987,45 +991,55 @@ namespace anvil::MaterialModel
         return;
       }
 
-    alignas(64) double sbar[6][W], dsig[6][W], stored_old[W], rate[W], hv[6][W], nominal[6][W];
+    alignas(64) double sbar[6][W], sbar_old[6][W], dsig[6][W], stored_old[W], rate[W],
+      hv[6][W], nominal[6][W];
     alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
       mean_stress[W];
     alignas(64) double elastic[W]; // 1: inside the surfaces
     alignas(64) double cdif[W], tdif[W];
+    // What every point needs: its damage (d_t, d_c), its cohesions (c_t,
+    // c_c) and its filtered rate. The rest of the history is read only
+    // where a lane is damaged or leaves the surfaces.
+    bool undamaged_batch = true;
+    bool undamaged[W];
     for (unsigned int l = 0; l < W; ++l)
       {
-        for (unsigned int k = 0; k < 6; ++k)
-          sbar[k][l] = h[l][i_effective_stress + k];
-        // kappa_t, kappa_c, c_t, c_c, d_t, d_c
-        for (unsigned int k = 0; k < 6; ++k)
+        for (unsigned int k = 2; k < 6; ++k)
           hv[k][l] = h[l][i_kappa_t + k];
-        dissipation[l] = h[l][i_dissipation];
-        rate[l]        = h[l][i_rate];
+        rate[l]      = h[l][i_rate];
+        undamaged[l] = (hv[4][l] == 0.) & (hv[5][l] == 0.);
+        undamaged_batch &= undamaged[l];
       }
-    // The effective stress rotates with the material, like the stress.
-    for (unsigned int l = 0; l < W; ++l)
-      Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sbar[0][l], sbar[1][l],
-                                sbar[2][l], sbar[3][l], sbar[4][l], sbar[5][l]);
-    // A batch whose points are all undamaged (d_t = d_c = 0: most of a
-    // structure's concrete before it cracks) takes the elastic trial as the
-    // nominal stress exactly (1 - d = 1), with no damage combination and
-    // no dissipation: in exact arithmetic an elastic step of an undamaged
-    // point dissipates nothing (the trapezoid's work equals the change of
-    // stored energy), so the sum of round-off is not kept either.
-    bool undamaged_batch = true;
-    for (unsigned int l = 0; l < W; ++l)
-      undamaged_batch &= (hv[4][l] == 0.) & (hv[5][l] == 0.);
+    // The old effective stress, rotated with the material like the stress.
+    // An undamaged point's effective stress is its stress (1 - d = 1; see
+    // the header), which arrives rotated: a batch of undamaged points
+    // (most of a structure's concrete before it cracks) reads no effective
+    // stress from its history.
+    if (undamaged_batch)
+      for (unsigned int k = 0; k < 6; ++k)
+        for (unsigned int l = 0; l < W; ++l)
+          sbar_old[k][l] = s[k][l];
+    else
+      {
+        for (unsigned int l = 0; l < W; ++l)
+          for (unsigned int k = 0; k < 6; ++k)
+            sbar_old[k][l] = h[l][i_effective_stress + k];
+        for (unsigned int l = 0; l < W; ++l)
+          Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sbar_old[0][l],
+                                    sbar_old[1][l], sbar_old[2][l], sbar_old[3][l],
+                                    sbar_old[4][l], sbar_old[5][l]);
+        for (unsigned int k = 0; k < 6; ++k)
+          for (unsigned int l = 0; l < W; ++l)
+            sbar_old[k][l] = undamaged[l] ? s[k][l] : sbar_old[k][l];
+      }
     // The elastic trial, its mean stress and von Mises stress.
     for (unsigned int l = 0; l < W; ++l)
       {
-        stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
-                                      sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l], sbar[4][l],
-                                      sbar[5][l]);
         const double tr = D[0][l] + D[1][l] + D[2][l];
         for (unsigned int k = 0; k < 6; ++k)
           {
             dsig[k][l] = (k < 3 ? lambda * tr + 2. * mu * D[k][l] : 2. * mu * D[k][l]) * dt;
-            sbar[k][l] += dsig[k][l];
+            sbar[k][l] = sbar_old[k][l] + dsig[k][l];
           }
         const double mean = (sbar[0][l] + sbar[1][l] + sbar[2][l]) / 3.;
         const double a = sbar[0][l] - mean, b = sbar[1][l] - mean, c = sbar[2][l] - mean;
@@ -1039,8 +1053,11 @@ namespace anvil::MaterialModel
     // deviator is at most sqrt(2/3) |s|), and F does not fall as s_max
     // grows where beta >= 0 (gamma >= 0 always), so the test at that bound
     // and a margin of 1e-7 (|mean| + q), never smaller than the exact
-    // test's, passes only points the exact test passes too.
-    bool undamaged_and_inside = false;
+    // test's, passes only points the exact test passes too. Such a batch
+    // takes the trial as its stress (1 - d = 1) and keeps its dissipation:
+    // in exact arithmetic an elastic step of an undamaged point dissipates
+    // nothing (the trapezoid's work equals the change of stored energy), so
+    // the sum of round-off is not kept either. Only its rate is stored.
     if (undamaged_batch)
       {
         bool all_inside = true;
@@ -1054,15 +1071,32 @@ namespace anvil::MaterialModel
                                           1e-7 * (std::abs(mean) + q));
           }
         if (all_inside)
-          for (unsigned int l = 0; l < W; ++l)
-            {
-              elastic[l] = 1.;
-              damage[l]  = 0.;
-              for (unsigned int k = 0; k < 6; ++k)
-                nominal[k][l] = sbar[k][l];
-            }
-        undamaged_and_inside = all_inside;
+          {
+            if (par.rate_effects)
+              {
+                update_rate(D, dt, rate);
+                for (unsigned int l = 0; l < W; ++l)
+                  h[l][i_rate] = rate[l];
+              }
+            for (unsigned int k = 0; k < 6; ++k)
+              for (unsigned int l = 0; l < W; ++l)
+                s[k][l] = sbar[k][l];
+            return;
+          }
       }
+
+    // The rest of the history, and the stored energy before the step (for
+    // the dissipation).
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        hv[0][l]       = h[l][i_kappa_t];
+        hv[1][l]       = h[l][i_kappa_c];
+        dissipation[l] = h[l][i_dissipation];
+      }
+    for (unsigned int l = 0; l < W; ++l)
+      stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
+                                    sbar_old[0][l], sbar_old[1][l], sbar_old[2][l],
+                                    sbar_old[3][l], sbar_old[4][l], sbar_old[5][l]);
 
     auto trial = [&](auto undamaged_tag) {
       constexpr bool undamaged = decltype(undamaged_tag)::value;
@@ -1114,13 +1148,10 @@ namespace anvil::MaterialModel
                             stored_old[l];
         }
     };
-    if (!undamaged_and_inside)
-      {
-        if (undamaged_batch)
-          trial(std::true_type());
-        else
-          trial(std::false_type());
-      }
+    if (undamaged_batch)
+      trial(std::true_type());
+    else
+      trial(std::false_type());
     if (par.rate_effects)
       update_rate(D, dt, rate);
 
@@ -1147,13 +1178,8 @@ namespace anvil::MaterialModel
           }
         if (elastic[l] != 0.)
           {
-            // (An undamaged point inside its surfaces keeps d = 0 and its
-            // dissipation.)
-            if (!undamaged_and_inside)
-              {
-                hl[i_damage]      = damage[l];
-                hl[i_dissipation] = dissipation[l];
-              }
+            hl[i_damage]      = damage[l];
+            hl[i_dissipation] = dissipation[l];
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = nominal[k][l];
           }

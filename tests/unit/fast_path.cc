@@ -162,6 +162,13 @@ int main()
           check_below("-(damaged elastic steps with stresses of both signs)", -double(damaged_elastic_mixed), -0.5);
           check_below("-(damaged elastic steps of one sign)", -double(damaged_elastic - damaged_elastic_mixed), -0.5);
           // Each variable relative to its largest magnitude over the block.
+          // An undamaged point's effective stress is its stress (compared
+          // below); its stored copy is not kept by the batch.
+          const auto stored = [&](const unsigned int e, const unsigned int k) {
+            const double *h = ref.history_variables(e, 0);
+            return k >= C::i_effective_stress + 6 || h[C::i_tensile_damage] > 0 ||
+                   h[C::i_compressive_damage] > 0;
+          };
           double worst_h = 0;
           for (unsigned int k = 0; k < concrete.n_updated_lagrangian_history(); ++k)
             {
@@ -169,8 +176,9 @@ int main()
               for (unsigned int e = 0; e < ref.n_elements(); ++e)
                 scale = std::max(scale, std::abs(ref.history_variables(e, 0)[k]));
               for (unsigned int e = 0; e < ref.n_elements(); ++e)
-                worst_h = std::max(worst_h, std::abs(fast.history_variables(e, 0)[k] -
-                                                     ref.history_variables(e, 0)[k]) / scale);
+                if (stored(e, k))
+                  worst_h = std::max(worst_h, std::abs(fast.history_variables(e, 0)[k] -
+                                                       ref.history_variables(e, 0)[k]) / scale);
             }
           // The history integrates the return's residual over the steps
           // (and full integration runs eight returns an element): a few

@@ -207,9 +207,14 @@ namespace anvil::MaterialModel
       return par;
     }
 
-    // History layout of one point: what every step reads first (the
-    // elastic test of the batched update touches the first 16 values), then
-    // what only inelastic steps and output read.
+    // History layout of one point: what every step reads first, then what
+    // only inelastic steps and output read. Without viscosity, the stress
+    // of an undamaged point (d_t = d_c = 0) is its effective stress, bit for
+    // bit (1 - d = 1 in every branch of the update), so the stored
+    // effective stress is valid only once the point is damaged: the
+    // batched update takes an undamaged point's effective stress from its
+    // stress and does not store it while the point stays inside its
+    // surfaces, and the one-point update copies it from the stress.
     static constexpr unsigned int i_effective_stress   = 0;
     static constexpr unsigned int i_kappa_t            = 6;
     static constexpr unsigned int i_kappa_c            = 7;
@@ -305,9 +310,6 @@ namespace anvil::MaterialModel
                               double       *stress,
                               double       *history) const override;
 
-    /** The batched update: the elastic trial, the rate filter and the test
-        for an intact point inside its surfaces across the batch; the
-        others through the one-point inelastic update (see the .cc). */
     /** The batched update: the elastic trial, the rate filter and the test
         for a point inside its current surfaces across the batch; the
         others through the one-point inelastic update (see the .cc). */
