@@ -354,7 +354,12 @@ namespace anvil::Element
     , hourglass_coefficient(hourglass_coefficient)
     , n_qp(integration == Integration::one_point ? 1 : 8)
     , n_hist(material.n_history(formulation))
-  {}
+    , n_hot(std::min(material.n_hot_history(formulation), n_hist))
+    , n_cold(n_hist - n_hot)
+  {
+    AssertThrow(n_hist <= MaterialModel::Interface::max_history,
+                dealii::ExcMessage("a material's history exceeds Interface::max_history"));
+  }
 
 
   void ElementGroup::set_bulk_viscosity(const double linear, const double quadratic)
@@ -420,7 +425,8 @@ namespace anvil::Element
   {
     const std::size_t n = cell_index.size();
     stresses.assign(6 * n * n_qp, 0.);
-    history.assign(n_hist * n * n_qp, 0.);
+    history.assign(n_hot * n * n_qp, 0.);
+    cold_history.assign(n_cold * n * n_qp, 0.);
     if (n_hist > 0)
       for (std::size_t e = 0; e < n; ++e)
         {
@@ -428,7 +434,12 @@ namespace anvil::Element
           data.characteristic_length = std::cbrt(reference_volume[e]);
           data.strength_factor       = strength_factors[e];
           for (unsigned int q = 0; q < n_qp; ++q)
-            material.initialize_history(&history[n_hist * (e * n_qp + q)], data);
+            {
+              double  buffer[MaterialModel::Interface::max_history];
+              double *h = point_history(e * n_qp + q, buffer);
+              material.initialize_history(h, data);
+              store_history(e * n_qp + q, h);
+            }
         }
     strength_factors = std::vector<double>();
     if (hourglass == HourglassType::stiffness)
@@ -477,6 +488,7 @@ namespace anvil::Element
             sizeof(double) *
               (reference_volume.capacity() + energy_weight.capacity() + jacobian_inverse_ref.capacity() +
                jxw_ref.capacity() + stresses.capacity() + history.capacity() +
+               cold_history.capacity() +
                hourglass_modes.capacity() + hourglass_resistance.capacity() +
                internal_energy.capacity() + shape_factor.capacity() +
                hourglass_energy.capacity())) /
@@ -658,7 +670,8 @@ namespace anvil::Element
             volume += detn * tables.weight[q];
 
             double *sig = &stresses[6 * (e * nq + qq)];
-            double *hst = n_hist ? &history[n_hist * (e * nq + qq)] : nullptr;
+            double  hst_buffer[MaterialModel::Interface::max_history];
+            double *hst = point_history(e * nq + qq, hst_buffer);
             double  G[3][3]; // stress times inverse Jacobian transposed
             double  jxw;
 
@@ -698,6 +711,7 @@ namespace anvil::Element
                                               dt,
                                               hst);
                     material.update_cauchy_stress(D, dt, sig, hst);
+                    store_history(e * nq + qq, hst);
                     trD = D[0] + D[1] + D[2];
                     // Seed Eq. (25): rho dw/dt = sigma : D, mid-step stress.
                     double mid[6];
@@ -747,6 +761,7 @@ namespace anvil::Element
                 double       old[6];
                 std::copy(sig, sig + 6, old);
                 material.update_pk2_stress(Fm, E, dt, sig, hst);
+                store_history(e * nq + qq, hst);
                 if (dt > 0)
                   {
                     // Seed Eq. (22c): rho_0 dw/dt = S : dE/dt with
@@ -875,7 +890,7 @@ namespace anvil::Element
                 // A damaged material's hourglass stiffness follows its
                 // elastic stiffness (secant: r = k (1 - d) q).
                 k = 0.25 * hourglass_coefficient * M * std::cbrt(volume) *
-                    (degrading ? material.stiffness_fraction(&history[n_hist * e * nq]) : 1.);
+                    (degrading ? stiffness_fraction(e * nq) : 1.);
                 double *q = &hourglass_modes[12 * e];
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int j = 0; j < 4; ++j)
@@ -1036,10 +1051,7 @@ namespace anvil::Element
             for (unsigned int l = 0; l < W; ++l)
               rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l], sig[1][l], sig[2][l],
                             sig[3][l], sig[4][l], sig[5][l]);
-            double *hist[W];
-            for (unsigned int l = 0; l < W; ++l)
-              hist[l] = n_hist ? &history[n_hist * (e * nq + l)] : nullptr;
-            material.update_cauchy_stress_batch(D, spin, dt, sig, hist);
+            material.update_cauchy_stress_batch(D, spin, dt, sig, batch_history(e * nq));
             // Seed Eq. (25) with the mid-step stress, per point.
             for (unsigned int l = 0; l < W; ++l)
               {
@@ -1101,7 +1113,7 @@ namespace anvil::Element
         bool failed = false;
         if (can_erode)
           for (unsigned int l = 0; l < W; ++l)
-            failed |= material.point_failed(&history[n_hist * (e * nq + l)]);
+            failed |= point_failed(e * nq + l);
 
         // f_Ia -= jxw sum_c G_ac dN_I/dxi_c, point after point (lanes:
         // nodes).
@@ -1289,16 +1301,20 @@ namespace anvil::Element
             deformation_rate_batch(Jd, Jmi, D, spin);
             // Padding lanes work on a scratch copy of the history, so that
             // the repeated last element is updated once only.
-            double *hist[W];
-            for (unsigned int l = 0; l < W; ++l)
-              hist[l] = n_hist ? &history[n_hist * el[l]] : nullptr;
+            MaterialModel::Interface::BatchHistory hist = batch_history(e0);
             if (n_hist)
               for (unsigned int l = 0; l < W; ++l)
                 if (!live[l])
                   {
-                    scratch_history.resize(n_hist * W);
-                    std::copy(hist[l], hist[l] + n_hist, &scratch_history[n_hist * l]);
-                    hist[l] = &scratch_history[n_hist * l];
+                    const std::size_t p = el[l];
+                    scratch_history.resize(n_hot * W);
+                    scratch_cold_history.resize(n_cold * W);
+                    hist.hot[l]  = &scratch_history[n_hot * l];
+                    hist.cold[l] = n_cold ? &scratch_cold_history[n_cold * l] : nullptr;
+                    std::copy(&history[n_hot * p], &history[n_hot * (p + 1)], hist.hot[l]);
+                    if (n_cold)
+                      std::copy(&cold_history[n_cold * p], &cold_history[n_cold * (p + 1)],
+                                hist.cold[l]);
                   }
             // The Hughes-Winget rotation of the stress across lanes (the
             // material rotates its own history).
@@ -1310,7 +1326,7 @@ namespace anvil::Element
             // integration point has failed.
             if (can_erode)
               for (unsigned int l = 0; l < W; ++l)
-                failed[l] = live[l] && material.point_failed(hist[l]);
+                failed[l] = live[l] && point_failed(el[l]);
             for (unsigned int l = 0; l < W; ++l)
               trD[l] = D[0][l] + D[1][l] + D[2][l];
             for (unsigned int l = 0; l < W; ++l)
@@ -1345,7 +1361,7 @@ namespace anvil::Element
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int j = 0; j < 4; ++j)
                   q_modes[a][j][l] = hourglass_modes[12 * el[l] + 4 * a + j];
-              stiffness[l] = degrading ? material.stiffness_fraction(&history[n_hist * el[l]]) : 1.;
+              stiffness[l] = degrading ? stiffness_fraction(el[l]) : 1.;
             }
 
         // max_c |grad xi_c|^2 per lane: the characteristic length.

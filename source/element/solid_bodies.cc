@@ -247,7 +247,7 @@ namespace anvil::Element
           double eps_p = 0;
           if (it != names.end())
             for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-              eps_p += group.history_variables(e, q)[it - names.begin()] /
+              eps_p += group.history_variable(e, q, it - names.begin()) /
                        group.n_quadrature_points();
           info.insert(info.end(),
                       {double(group.element_global_id(e)),

@@ -982,14 +982,17 @@ namespace anvil::MaterialModel
                                                              const double (&spin)[3][batch_size],
                                                              const double dt,
                                                              double (&s)[6][batch_size],
-                                                             double *const (&h)[batch_size]) const
+                                                             const BatchHistory &history) const
   {
     constexpr unsigned int W = batch_size;
     if (par.viscosity > 0 || par.erosion_principal_strain > 0 || !(dt > 0))
       {
-        Interface::update_cauchy_stress_batch(D, spin, dt, s, h);
+        Interface::update_cauchy_stress_batch(D, spin, dt, s, history);
         return;
       }
+    // The hot values of lane l at hot[l][k], the others at cold[l][k - n_hot].
+    double *const(&hot)[W]  = history.hot;
+    double *const(&cold)[W] = history.cold;
 
     alignas(64) double sbar[6][W], sbar_old[6][W], dsig[6][W], stored_old[W], rate[W],
       hv[6][W], nominal[6][W];
@@ -1004,9 +1007,11 @@ namespace anvil::MaterialModel
     bool undamaged[W];
     for (unsigned int l = 0; l < W; ++l)
       {
-        for (unsigned int k = 2; k < 6; ++k)
-          hv[k][l] = h[l][i_kappa_t + k];
-        rate[l]      = h[l][i_rate];
+        hv[2][l]     = hot[l][i_tensile_cohesion];
+        hv[3][l]     = hot[l][i_compressive_cohesion];
+        hv[4][l]     = hot[l][i_tensile_damage];
+        hv[5][l]     = hot[l][i_compressive_damage];
+        rate[l]      = hot[l][i_rate];
         undamaged[l] = (hv[4][l] == 0.) & (hv[5][l] == 0.);
         undamaged_batch &= undamaged[l];
       }
@@ -1023,7 +1028,7 @@ namespace anvil::MaterialModel
       {
         for (unsigned int l = 0; l < W; ++l)
           for (unsigned int k = 0; k < 6; ++k)
-            sbar_old[k][l] = h[l][i_effective_stress + k];
+            sbar_old[k][l] = cold[l][i_effective_stress - n_hot + k];
         for (unsigned int l = 0; l < W; ++l)
           Kinematics::rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sbar_old[0][l],
                                     sbar_old[1][l], sbar_old[2][l], sbar_old[3][l],
@@ -1076,7 +1081,7 @@ namespace anvil::MaterialModel
               {
                 update_rate(D, dt, rate);
                 for (unsigned int l = 0; l < W; ++l)
-                  h[l][i_rate] = rate[l];
+                  hot[l][i_rate] = rate[l];
               }
             for (unsigned int k = 0; k < 6; ++k)
               for (unsigned int l = 0; l < W; ++l)
@@ -1089,9 +1094,9 @@ namespace anvil::MaterialModel
     // the dissipation).
     for (unsigned int l = 0; l < W; ++l)
       {
-        hv[0][l]       = h[l][i_kappa_t];
-        hv[1][l]       = h[l][i_kappa_c];
-        dissipation[l] = h[l][i_dissipation];
+        hv[0][l]       = cold[l][i_kappa_t - n_hot];
+        hv[1][l]       = cold[l][i_kappa_c - n_hot];
+        dissipation[l] = cold[l][i_dissipation - n_hot];
       }
     for (unsigned int l = 0; l < W; ++l)
       stored_old[l] = stored_energy(s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l],
@@ -1157,9 +1162,9 @@ namespace anvil::MaterialModel
 
     for (unsigned int l = 0; l < W; ++l)
       {
-        double *hl = h[l];
+        double *hl = hot[l], *cl = cold[l];
         for (unsigned int k = 0; k < 6; ++k)
-          hl[i_effective_stress + k] = sbar[k][l];
+          cl[i_effective_stress - n_hot + k] = sbar[k][l];
         if (par.rate_effects)
           {
             hl[i_rate] = rate[l];
@@ -1178,8 +1183,8 @@ namespace anvil::MaterialModel
           }
         if (elastic[l] != 0.)
           {
-            hl[i_damage]      = damage[l];
-            hl[i_dissipation] = dissipation[l];
+            cl[i_damage - n_hot]      = damage[l];
+            cl[i_dissipation - n_hot] = dissipation[l];
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = nominal[k][l];
           }
@@ -1192,8 +1197,12 @@ namespace anvil::MaterialModel
                 ds[k]  = dsig[k][l];
                 old[k] = s[k][l];
               }
+            // The one-point update on the point's history in one piece.
+            double h[max_history];
+            history.gather(l, h);
             inelastic_update(d, dt, ds, old, stored_old[l], par.rate_effects ? cdif[l] : 1.,
-                             par.rate_effects ? tdif[l] : 1., st, hl);
+                             par.rate_effects ? tdif[l] : 1., st, h);
+            history.scatter(l, h);
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = st[k];
           }

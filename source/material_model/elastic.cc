@@ -68,7 +68,7 @@ namespace anvil::MaterialModel
                                            const double (&)[3][batch_size],
                                            const double dt,
                                            double (&stress)[6][batch_size],
-                                           double *const (&)[batch_size]) const
+                                           const BatchHistory &) const
   {
     for (unsigned int l = 0; l < batch_size; ++l)
       {

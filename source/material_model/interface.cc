@@ -26,22 +26,32 @@ namespace anvil
                                                const double (&spin)[3][batch_size],
                                                const double dt,
                                                double (&stress)[6][batch_size],
-                                               double *const (&history)[batch_size]) const
+                                               const BatchHistory &history) const
     {
       const bool rotate = has_tensorial_history();
       for (unsigned int l = 0; l < batch_size; ++l)
         {
+          // The point's history in one piece (a copy where it is split).
+          double  buffer[max_history];
+          double *h = history.hot[l];
+          if (history.n_cold > 0)
+            {
+              history.gather(l, buffer);
+              h = buffer;
+            }
           if (rotate)
-            rotate_history(spin[0][l], spin[1][l], spin[2][l], dt, history[l]);
+            rotate_history(spin[0][l], spin[1][l], spin[2][l], dt, h);
           double d[6], s[6];
           for (unsigned int k = 0; k < 6; ++k)
             {
               d[k] = D[k][l];
               s[k] = stress[k][l];
             }
-          update_cauchy_stress(d, dt, s, history[l]);
+          update_cauchy_stress(d, dt, s, h);
           for (unsigned int k = 0; k < 6; ++k)
             stress[k][l] = s[k];
+          if (history.n_cold > 0)
+            history.scatter(l, buffer);
         }
     }
 

@@ -261,9 +261,11 @@ namespace anvil::MaterialModel
                                                     const double (&spin)[3][batch_size],
                                                     const double dt,
                                                     double (&s)[6][batch_size],
-                                                    double *const (&h)[batch_size]) const
+                                                    const BatchHistory &history) const
   {
     constexpr unsigned int W = batch_size;
+    // (The whole history is hot: n_hot_history() is n_history().)
+    double *const(&h)[W] = history.hot;
     // Gather the history (back stress, eps_p, plastic work, rate) into
     // lanes.
     double alpha[6][W], eps_p[W], work[W], rate[W], R[W];

@@ -53,7 +53,7 @@ namespace anvil::Postprocess
                 const bool eroded = group.element_is_eroded(e);
                 if (id >= 0)
                   for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                    dissipated[b] += group.history_variables(e, q)[id] *
+                    dissipated[b] += group.history_variable(e, q, id) *
                                      group.element_reference_volume(e) /
                                      group.n_quadrature_points();
                 count[3 * b] += 1;
@@ -63,7 +63,7 @@ namespace anvil::Postprocess
                   continue;
                 double eps_p = 0;
                 for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                  eps_p += group.history_variables(e, q)[it - names.begin()] /
+                  eps_p += group.history_variable(e, q, it - names.begin()) /
                            group.n_quadrature_points();
                 if (!eroded)
                   peak[2 * b] = std::max(peak[2 * b], eps_p);

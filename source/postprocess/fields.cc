@@ -76,7 +76,7 @@ namespace anvil::Postprocess
                 {
                   double mean = 0;
                   for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                    mean += group.get_material().history_value(group.history_variables(e, q), k) /
+                    mean += group.history_output(e, q, k) /
                             group.n_quadrature_points();
                   history_fields[names[k]][group.element_cell_index(e)] = mean;
                 }

@@ -91,7 +91,7 @@ int main()
           if (m == &concrete)
             for (unsigned int e = 0; e < ref.n_elements(); ++e)
               for (const unsigned int k : {C::i_kappa_t, C::i_kappa_c})
-                kappa_before.push_back(ref.history_variables(e, 0)[k]);
+                kappa_before.push_back(ref.history_variable(e, 0, k));
           std::vector<double> f1(x.size(), 0.), f2(x.size(), 0.);
           const auto r1 = fast.compute_internal_forces(x.data(), v.data(), step ? dt : 0., f1.data());
           const auto r2 = ref.compute_internal_forces_reference(x.data(), v.data(), step ? dt : 0., f2.data());
@@ -116,7 +116,8 @@ int main()
           if (m == &concrete)
             for (unsigned int e = 0; e < ref.n_elements(); ++e)
               {
-                const double *h = ref.history_variables(e, 0);
+                double h[MaterialModel::Interface::max_history];
+                ref.copy_history(e, 0, h);
                 if ((h[C::i_tensile_damage] > 0 || h[C::i_compressive_damage] > 0) &&
                     h[C::i_kappa_t] == kappa_before[2 * e] && h[C::i_kappa_c] == kappa_before[2 * e + 1])
                   {
@@ -138,13 +139,13 @@ int main()
         {
           double eps_p = 0;
           for (unsigned int e = 0; e < ref.n_elements(); ++e)
-            eps_p = std::max(eps_p, ref.history_variables(e, 0)[6]);
+            eps_p = std::max(eps_p, ref.history_variable(e, 0, 6));
           check_below("the plastic run yields: -(largest effective plastic strain)", -eps_p, -1e-8);
           double worst_h = 0;
           for (unsigned int e = 0; e < ref.n_elements(); ++e)
             for (unsigned int k = 0; k < 9; ++k)
-              worst_h = std::max(worst_h, std::abs(fast.history_variables(e, 0)[k] - ref.history_variables(e, 0)[k]) /
-                                            (std::abs(ref.history_variables(e, 0)[k]) + 1e-30 + (k < 6 ? 1e3 : 0.)));
+              worst_h = std::max(worst_h, std::abs(fast.history_variable(e, 0, k) - ref.history_variable(e, 0, k)) /
+                                            (std::abs(ref.history_variable(e, 0, k)) + 1e-30 + (k < 6 ? 1e3 : 0.)));
           check_below("history variables, largest relative difference", worst_h, 1e-10);
         }
       if (m == &concrete)
@@ -152,8 +153,8 @@ int main()
           double kt = 0, kc = 0;
           for (unsigned int e = 0; e < ref.n_elements(); ++e)
             {
-              kt = std::max(kt, ref.history_variables(e, 0)[C::i_kappa_t]);
-              kc = std::max(kc, ref.history_variables(e, 0)[C::i_kappa_c]);
+              kt = std::max(kt, ref.history_variable(e, 0, C::i_kappa_t));
+              kc = std::max(kc, ref.history_variable(e, 0, C::i_kappa_c));
             }
           check_below("the concrete cracks: -(largest tensile plastic strain)", -kt, -1e-8);
           check_below("the concrete crushes: -(largest compressive plastic strain)", -kc, -1e-8);
@@ -165,20 +166,20 @@ int main()
           // An undamaged point's effective stress is its stress (compared
           // below); its stored copy is not kept by the batch.
           const auto stored = [&](const unsigned int e, const unsigned int k) {
-            const double *h = ref.history_variables(e, 0);
-            return k >= C::i_effective_stress + 6 || h[C::i_tensile_damage] > 0 ||
-                   h[C::i_compressive_damage] > 0;
+            return k < C::i_effective_stress || k >= C::i_effective_stress + 6 ||
+                   ref.history_variable(e, 0, C::i_tensile_damage) > 0 ||
+                   ref.history_variable(e, 0, C::i_compressive_damage) > 0;
           };
           double worst_h = 0;
           for (unsigned int k = 0; k < concrete.n_updated_lagrangian_history(); ++k)
             {
               double scale = 1e-300;
               for (unsigned int e = 0; e < ref.n_elements(); ++e)
-                scale = std::max(scale, std::abs(ref.history_variables(e, 0)[k]));
+                scale = std::max(scale, std::abs(ref.history_variable(e, 0, k)));
               for (unsigned int e = 0; e < ref.n_elements(); ++e)
                 if (stored(e, k))
-                  worst_h = std::max(worst_h, std::abs(fast.history_variables(e, 0)[k] -
-                                                       ref.history_variables(e, 0)[k]) / scale);
+                  worst_h = std::max(worst_h, std::abs(fast.history_variable(e, 0, k) -
+                                                       ref.history_variable(e, 0, k)) / scale);
             }
           // The history integrates the return's residual over the steps
           // (and full integration runs eight returns an element): a few

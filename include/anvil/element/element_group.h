@@ -24,6 +24,7 @@
 
 #include <anvil/material_model/interface.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -220,10 +221,26 @@ namespace anvil::Element
     {
       return !alive.empty() && !alive[e];
     }
-    /** History variables of quadrature point q of element e. */
-    const double *history_variables(const unsigned int e, const unsigned int q) const
+    /** History variable k of quadrature point q of element e. */
+    double history_variable(const unsigned int e, const unsigned int q, const unsigned int k) const
     {
-      return n_hist ? &history[n_hist * (e * n_qp + q)] : nullptr;
+      const std::size_t p = e * n_qp + q;
+      return k < n_hot ? history[n_hot * p + k] : cold_history[n_cold * p + k - n_hot];
+    }
+    /** All history variables of quadrature point q of element e (n_history()
+        values) into @p h. */
+    void copy_history(const unsigned int e, const unsigned int q, double *h) const
+    {
+      for (unsigned int k = 0; k < n_hist; ++k)
+        h[k] = history_variable(e, q, k);
+    }
+    /** The material's history_value() of variable k at quadrature point q
+        of element e (a stored or derived value). */
+    double history_output(const unsigned int e, const unsigned int q, const unsigned int k) const
+    {
+      double h[MaterialModel::Interface::max_history];
+      copy_history(e, q, h);
+      return material.history_value(h, k);
     }
     const std::array<unsigned int, 8> element_nodes(const unsigned int e) const;
 
@@ -347,6 +364,53 @@ namespace anvil::Element
     }
     const unsigned int              n_qp;
     const unsigned int              n_hist;
+    /** The history's split (MaterialModel::Interface::n_hot_history()):
+        the first n_hot values of every point in history, the other
+        n_cold in cold_history. */
+    const unsigned int              n_hot;
+    const unsigned int              n_cold;
+    /** Point p's whole history: its own storage where the history is not
+        split, else a copy in @p buffer, which store_history() writes back. */
+    double *point_history(const std::size_t p, double *buffer)
+    {
+      if (n_hist == 0)
+        return nullptr;
+      if (n_cold == 0)
+        return &history[n_hot * p];
+      copy_history(p / n_qp, p % n_qp, buffer);
+      return buffer;
+    }
+    void store_history(const std::size_t p, const double *h)
+    {
+      if (n_cold == 0 || h == nullptr)
+        return;
+      std::copy(h, h + n_hot, &history[n_hot * p]);
+      std::copy(h + n_hot, h + n_hist, &cold_history[n_cold * p]);
+    }
+    /** The material's point_failed() and stiffness_fraction() of point p. */
+    bool point_failed(const std::size_t p)
+    {
+      double buffer[MaterialModel::Interface::max_history];
+      return material.point_failed(point_history(p, buffer));
+    }
+    double stiffness_fraction(const std::size_t p)
+    {
+      double buffer[MaterialModel::Interface::max_history];
+      return material.stiffness_fraction(point_history(p, buffer));
+    }
+    /** The split history of the batch of points p0 ... p0 + W - 1. */
+    MaterialModel::Interface::BatchHistory batch_history(const std::size_t p0)
+    {
+      MaterialModel::Interface::BatchHistory h;
+      h.n_hot  = n_hot;
+      h.n_cold = n_cold;
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          h.hot[l]  = n_hot ? &history[n_hot * (p0 + l)] : nullptr;
+          h.cold[l] = n_cold ? &cold_history[n_cold * (p0 + l)] : nullptr;
+        }
+      return h;
+    }
 
     /** The nodes' first nodal-vector entries, by batch of W elements and
         node-major within a batch (node(e, n)), so that the batched loop
@@ -370,7 +434,9 @@ namespace anvil::Element
     /** Weight times reference Jacobian determinant per point. */
     std::vector<double> jxw_ref;
     std::vector<double> stresses;
+    /** The points' history (see n_hot). */
     std::vector<double> history;
+    std::vector<double> cold_history;
     /** Stiffness hourglass control: accumulated modes q_aj (12). */
     std::vector<double> hourglass_modes;
     /** Hourglass resistance r_aj of the previous step (12), for the
@@ -398,6 +464,7 @@ namespace anvil::Element
     std::vector<double> strength_factors;
     /** History of the padding lanes of the last batch. */
     std::vector<double> scratch_history;
+    std::vector<double> scratch_cold_history;
     /** Full integration, updated Lagrangian: full_batched_loop() (false
         only while compute_internal_forces_reference() runs loop()). */
     bool batch_points = true;
@@ -406,9 +473,9 @@ namespace anvil::Element
     /** Everything a step changes (checkpoints). */
     void serialize(StateArchive &ar)
     {
-      ar &alive &stresses &history &hourglass_modes &hourglass_resistance &internal_energy
-        &hourglass_energy &bulk_pressure &shape_factor &n_calls &refresh_shape &strength_factors
-          &energy_weight &scratch_history;
+      ar &alive &stresses &history &cold_history &hourglass_modes &hourglass_resistance
+        &internal_energy &hourglass_energy &bulk_pressure &shape_factor &n_calls &refresh_shape
+          &strength_factors &energy_weight &scratch_history &scratch_cold_history;
     }
   };
 } // namespace anvil::Element

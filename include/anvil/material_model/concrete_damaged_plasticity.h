@@ -207,30 +207,33 @@ namespace anvil::MaterialModel
       return par;
     }
 
-    // History layout of one point: what every step reads first, then what
-    // only inelastic steps and output read. Without viscosity, the stress
-    // of an undamaged point (d_t = d_c = 0) is its effective stress, bit for
-    // bit (1 - d = 1 in every branch of the update), so the stored
-    // effective stress is valid only once the point is damaged: the
-    // batched update takes an undamaged point's effective stress from its
-    // stress and does not store it while the point stays inside its
-    // surfaces, and the one-point update copies it from the stress.
-    static constexpr unsigned int i_effective_stress   = 0;
-    static constexpr unsigned int i_kappa_t            = 6;
-    static constexpr unsigned int i_kappa_c            = 7;
+    // History layout of one point: first the values the batched update
+    // reads at every step (n_hot_history(): the elastic test of an
+    // undamaged point needs no others), then what only damaged points,
+    // inelastic steps and output read. Without viscosity, the stress of an
+    // undamaged point (d_t = d_c = 0) is its effective stress, bit for bit
+    // (1 - d = 1 in every branch of the update), so the stored effective
+    // stress is valid only once the point is damaged: the batched update
+    // takes an undamaged point's effective stress from its stress and
+    // does not store it while the point stays inside its surfaces, and the
+    // one-point update copies it from the stress.
     /** The effective cohesions c_t(kappa_t), c_c(kappa_c) with the
         strength factor, before rate effects (kept so that the elastic test
         needs no curve lookup). */
-    static constexpr unsigned int i_tensile_cohesion     = 8;
-    static constexpr unsigned int i_compressive_cohesion = 9;
-    static constexpr unsigned int i_tensile_damage     = 10;
-    static constexpr unsigned int i_compressive_damage = 11;
-    static constexpr unsigned int i_damage             = 12;
-    static constexpr unsigned int i_dissipation        = 13;
+    static constexpr unsigned int i_tensile_cohesion     = 0;
+    static constexpr unsigned int i_compressive_cohesion = 1;
+    static constexpr unsigned int i_tensile_damage       = 2;
+    static constexpr unsigned int i_compressive_damage   = 3;
     /** Filtered strain rate; negative until the first step sets it. */
-    static constexpr unsigned int i_rate               = 14;
-    static constexpr unsigned int i_strength_factor    = 15;
-    static constexpr unsigned int i_length             = 16;
+    static constexpr unsigned int i_rate                 = 4;
+    static constexpr unsigned int n_hot                  = 5;
+    static constexpr unsigned int i_effective_stress     = 5;
+    static constexpr unsigned int i_kappa_t              = 11;
+    static constexpr unsigned int i_kappa_c              = 12;
+    static constexpr unsigned int i_damage               = 13;
+    static constexpr unsigned int i_dissipation          = 14;
+    static constexpr unsigned int i_strength_factor      = 15;
+    static constexpr unsigned int i_length               = 16;
     /** The values every point has; what only some scenes need follows
         them (the indices below, set by set()). */
     static constexpr unsigned int n_base_history       = 17;
@@ -256,6 +259,10 @@ namespace anvil::MaterialModel
     unsigned int n_updated_lagrangian_history() const override
     {
       return n_ul_history;
+    }
+    unsigned int n_hot_history(const Formulation) const override
+    {
+      return n_hot;
     }
     std::vector<std::string> history_names() const override;
     double history_value(const double *history, unsigned int k) const override;
@@ -317,7 +324,7 @@ namespace anvil::MaterialModel
                                     const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
-                                    double *const (&history)[batch_size]) const override;
+                                    const BatchHistory &history) const override;
 
     /** Static tensile damage and effective cohesion at hardening variable
         @p kappa_t, characteristic length @p h and strength factor @p f. */

@@ -66,7 +66,7 @@ namespace anvil::MaterialModel
                                     const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
-                                    double *const (&history)[batch_size]) const override;
+                                    const BatchHistory &history) const override;
 
     void compute_pk2_stress(const double *F,
                             const double *E,

@@ -85,6 +85,18 @@ namespace anvil
       }
 
       /**
+       * Number of leading values of a point's history (of n_history(f))
+       * that the batched update reads at every step. The element kernels
+       * store these of all points in one array and the rest in another, so
+       * that a step over points that need no more streams only the first
+       * (concrete inside its surfaces: 5 values of 17). The default: all.
+       */
+      virtual unsigned int n_hot_history(const Formulation f = Formulation::updated_lagrangian) const
+      {
+        return n_history(f);
+      }
+
+      /**
        * Set up the history of one point (after it is zeroed) from what the
        * mesh knows of it. The default leaves the zeros.
        */
@@ -216,6 +228,40 @@ namespace anvil
       /** Number of material points the batched updates handle at once. */
       static constexpr unsigned int batch_size = 8;
 
+      /**
+       * The history of a batch's points, as the element kernels store it:
+       * the first n_hot values of point l (n_hot_history()) at hot[l], the
+       * other n_cold at cold[l].
+       */
+      struct BatchHistory
+      {
+        double      *hot[batch_size];
+        double      *cold[batch_size];
+        unsigned int n_hot  = 0;
+        unsigned int n_cold = 0;
+
+        /** Point l's whole history (n_hot + n_cold values) into @p h. */
+        void gather(const unsigned int l, double *h) const
+        {
+          for (unsigned int k = 0; k < n_hot; ++k)
+            h[k] = hot[l][k];
+          for (unsigned int k = 0; k < n_cold; ++k)
+            h[n_hot + k] = cold[l][k];
+        }
+        /** And back. */
+        void scatter(const unsigned int l, const double *h) const
+        {
+          for (unsigned int k = 0; k < n_hot; ++k)
+            hot[l][k] = h[k];
+          for (unsigned int k = 0; k < n_cold; ++k)
+            cold[l][k] = h[n_hot + k];
+        }
+      };
+
+      /** The largest n_history() of any model (the kernels' buffers for
+          one point's history). */
+      static constexpr unsigned int max_history = 64;
+
       /** Rotate the tensorial history by the spin W (components W_01,
           W_12, W_02) over @p dt, as the kernel rotates the stress. */
       virtual void rotate_history(const double w01,
@@ -240,7 +286,7 @@ namespace anvil
                                               const double (&spin)[3][batch_size],
                                               const double dt,
                                               double (&stress)[6][batch_size],
-                                              double *const (&history)[batch_size]) const;
+                                              const BatchHistory &history) const;
 
       /**
        * Total Lagrangian evaluation: second Piola-Kirchhoff stress @p S

@@ -162,7 +162,7 @@ namespace anvil::MaterialModel
                                     const double (&spin)[3][batch_size],
                                     double dt,
                                     double (&stress)[6][batch_size],
-                                    double *const (&history)[batch_size]) const override;
+                                    const BatchHistory &history) const override;
 
     double update_uniaxial_stress(double  strain_increment,
                                   double  dt,
