@@ -335,23 +335,33 @@ namespace anvil::MaterialModel
     bool any_plastic = false;
     for (unsigned int l = 0; l < W; ++l)
       any_plastic |= std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], R[l]);
-    for (unsigned int l = 0; l < W && any_plastic; ++l)
+    if (any_plastic)
       {
-        const double q      = std::sqrt(1.5) * norm[l];
-        const double excess = q - law.yield_stress(eps_p[l], R[l]);
-        const double dep    = excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
-        const double inv    = norm[l] > 0 ? 1. / norm[l] : 0.;
-        const double a      = 2. * mu * std::sqrt(1.5) * dep * inv;
-        const double b      = std::sqrt(2. / 3.) * Hk * dep * inv;
-        double       w      = 0;
-        for (unsigned int k = 0; k < 6; ++k)
+        // The radial return of every lane at once (dep = 0 leaves an
+        // elastic lane's stress, back stress and work as they are), in
+        // loops over the lanes that vectorise.
+        alignas(64) double a[W], b[W], c[W];
+        for (unsigned int l = 0; l < W; ++l)
           {
-            s[k][l] -= a * xi[k][l];
-            alpha[k][l] += b * xi[k][l];
-            w += (k < 3 ? 1. : 2.) * s[k][l] * std::sqrt(1.5) * dep * xi[k][l] * inv;
+            const double excess = std::sqrt(1.5) * norm[l] - law.yield_stress(eps_p[l], R[l]);
+            const double dep =
+              excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
+            const double inv = norm[l] > 0 ? 1. / norm[l] : 0.;
+            a[l]             = 2. * mu * std::sqrt(1.5) * dep * inv;
+            b[l]             = std::sqrt(2. / 3.) * Hk * dep * inv;
+            c[l]             = std::sqrt(1.5) * dep * inv;
+            eps_p[l] += dep;
           }
-        eps_p[l] += dep;
-        work[l] += w;
+        for (unsigned int k = 0; k < 6; ++k)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              s[k][l] -= a[l] * xi[k][l];
+              alpha[k][l] += b[l] * xi[k][l];
+            }
+        // The plastic work sigma : d eps_p, d eps_p = sqrt(3/2) dep xi / |xi|.
+        for (unsigned int l = 0; l < W; ++l)
+          work[l] += c[l] * (s[0][l] * xi[0][l] + s[1][l] * xi[1][l] + s[2][l] * xi[2][l] +
+                             2. * (s[3][l] * xi[3][l] + s[4][l] * xi[4][l] + s[5][l] * xi[5][l]));
       }
     // A point that never yielded keeps its zeros: only the rate is new.
     for (unsigned int l = 0; l < W; ++l)
