@@ -393,10 +393,10 @@ namespace anvil::Element
       double buffer[MaterialModel::Interface::max_history];
       return material.point_failed(point_history(p, buffer));
     }
-    double stiffness_fraction(const std::size_t p)
+    /** (It reads hot values only: no copy.) */
+    double stiffness_fraction(const std::size_t p) const
     {
-      double buffer[MaterialModel::Interface::max_history];
-      return material.stiffness_fraction(point_history(p, buffer));
+      return material.stiffness_fraction(&history[n_hot * p]);
     }
     /** The split history of the batch of points p0 ... p0 + W - 1. */
     MaterialModel::Interface::BatchHistory batch_history(const std::size_t p0)

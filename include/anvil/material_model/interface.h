@@ -187,7 +187,9 @@ namespace anvil
       /** The point's current elastic stiffness over the initial one, in
           [0, 1] (1 - d for a damaged material): the factor on the
           stiffness hourglass control of its element, which otherwise
-          gives a cracked element the strength of an intact one. */
+          gives a cracked element the strength of an intact one. It reads
+          only the first n_hot_history() values of @p history (the
+          kernels pass those, at every step). */
       virtual double stiffness_fraction(const double *history) const
       {
         (void)history;
