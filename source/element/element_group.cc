@@ -1051,7 +1051,10 @@ namespace anvil::Element
             for (unsigned int l = 0; l < W; ++l)
               rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l], sig[1][l], sig[2][l],
                             sig[3][l], sig[4][l], sig[5][l]);
-            material.update_cauchy_stress_batch(D, spin, dt, sig, batch_history(e * nq));
+            unsigned int points[W];
+            for (unsigned int l = 0; l < W; ++l)
+              points[l] = e * nq + l;
+            material.update_cauchy_stress_batch(D, spin, dt, sig, batch_history(points));
             // Seed Eq. (25) with the mid-step stress, per point.
             for (unsigned int l = 0; l < W; ++l)
               {
@@ -1301,7 +1304,7 @@ namespace anvil::Element
             deformation_rate_batch(Jd, Jmi, D, spin);
             // Padding lanes work on a scratch copy of the history, so that
             // the repeated last element is updated once only.
-            MaterialModel::Interface::BatchHistory hist = batch_history(e0);
+            MaterialModel::Interface::BatchHistory hist = batch_history(el);
             if (n_hist)
               for (unsigned int l = 0; l < W; ++l)
                 if (!live[l])
@@ -1309,12 +1312,10 @@ namespace anvil::Element
                     const std::size_t p = el[l];
                     scratch_history.resize(n_hot * W);
                     scratch_cold_history.resize(n_cold * W);
-                    hist.hot[l]  = &scratch_history[n_hot * l];
-                    hist.cold[l] = n_cold ? &scratch_cold_history[n_cold * l] : nullptr;
-                    std::copy(&history[n_hot * p], &history[n_hot * (p + 1)], hist.hot[l]);
-                    if (n_cold)
-                      std::copy(&cold_history[n_cold * p], &cold_history[n_cold * (p + 1)],
-                                hist.cold[l]);
+                    hist.hot[l]  = scratch_history.data() + n_hot * l;
+                    hist.cold[l] = scratch_cold_history.data() + n_cold * l;
+                    std::copy_n(history.data() + n_hot * p, n_hot, hist.hot[l]);
+                    std::copy_n(cold_history.data() + n_cold * p, n_cold, hist.cold[l]);
                   }
             // The Hughes-Winget rotation of the stress across lanes (the
             // material rotates its own history).

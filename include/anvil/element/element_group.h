@@ -376,7 +376,7 @@ namespace anvil::Element
       if (n_hist == 0)
         return nullptr;
       if (n_cold == 0)
-        return &history[n_hot * p];
+        return history.data() + n_hot * p;
       copy_history(p / n_qp, p % n_qp, buffer);
       return buffer;
     }
@@ -384,8 +384,8 @@ namespace anvil::Element
     {
       if (n_cold == 0 || h == nullptr)
         return;
-      std::copy(h, h + n_hot, &history[n_hot * p]);
-      std::copy(h + n_hot, h + n_hist, &cold_history[n_cold * p]);
+      std::copy_n(h, n_hot, history.data() + n_hot * p);
+      std::copy_n(h + n_hot, n_cold, cold_history.data() + n_cold * p);
     }
     /** The material's point_failed() and stiffness_fraction() of point p. */
     bool point_failed(const std::size_t p)
@@ -396,18 +396,18 @@ namespace anvil::Element
     /** (It reads hot values only: no copy.) */
     double stiffness_fraction(const std::size_t p) const
     {
-      return material.stiffness_fraction(&history[n_hot * p]);
+      return material.stiffness_fraction(history.data() + n_hot * p);
     }
-    /** The split history of the batch of points p0 ... p0 + W - 1. */
-    MaterialModel::Interface::BatchHistory batch_history(const std::size_t p0)
+    /** The split history of a batch whose lane l is point @p points[l]. */
+    MaterialModel::Interface::BatchHistory batch_history(const unsigned int (&points)[MaterialModel::Interface::batch_size])
     {
       MaterialModel::Interface::BatchHistory h;
       h.n_hot  = n_hot;
       h.n_cold = n_cold;
       for (unsigned int l = 0; l < W; ++l)
         {
-          h.hot[l]  = n_hot ? &history[n_hot * (p0 + l)] : nullptr;
-          h.cold[l] = n_cold ? &cold_history[n_cold * (p0 + l)] : nullptr;
+          h.hot[l]  = history.data() + n_hot * std::size_t(points[l]);
+          h.cold[l] = cold_history.data() + n_cold * std::size_t(points[l]);
         }
       return h;
     }
