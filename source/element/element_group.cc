@@ -11,6 +11,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#  include <immintrin.h>
+#endif
+
 namespace anvil::Element
 {
   std::string to_string(const Integration i)
@@ -295,6 +299,54 @@ namespace anvil::Element
             for (unsigned int n = 0; n < 8; ++n)
               out[n][a][l] = r[n];
           }
+    }
+
+    /** xe[n][a][l] = x[idx[n][l] + a]: the batch's nodal values, lanes
+        innermost. A node's three components are consecutive, so with
+        AVX-512 each (node, lane) is one masked load of three doubles, and
+        eight of them are transposed into the three components' lane
+        vectors (24 scalar loads and their inserts before). */
+    template <unsigned int W>
+    inline void gather_nodes(const double *x, const unsigned int (&idx)[8][W], double (&xe)[8][3][W])
+    {
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+      if constexpr (W == 8)
+        {
+          // From two registers of lanes (2k, 2k+1) and (2k+2, 2k+3), each
+          // [x y z 0 | x y z 0]: the four lanes' x and y, and their z.
+          const __m512i xy = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13);
+          const __m512i z  = _mm512_setr_epi64(2, 6, 10, 14, 2, 6, 10, 14);
+          // The low and the high halves of two such results, joined.
+          const __m512i low  = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
+          const __m512i high = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
+          const __m512d zero = _mm512_setzero_pd();
+          for (unsigned int n = 0; n < 8; ++n)
+            {
+              __m512d t[4];
+              for (unsigned int k = 0; k < 4; ++k)
+                {
+                  // (The masked forms of the inserts: GCC 12 warns of the
+                  // plain ones' undefined source.)
+                  const __m512d lo = _mm512_mask_insertf64x4(
+                    zero, 0xff, zero, _mm256_maskz_loadu_pd(0x7, x + idx[n][2 * k]), 0);
+                  t[k] = _mm512_mask_insertf64x4(lo, 0xff, lo,
+                                                 _mm256_maskz_loadu_pd(0x7, x + idx[n][2 * k + 1]), 1);
+                }
+              const __m512d xy03 = _mm512_permutex2var_pd(t[0], xy, t[1]);
+              const __m512d xy47 = _mm512_permutex2var_pd(t[2], xy, t[3]);
+              const __m512d z03  = _mm512_permutex2var_pd(t[0], z, t[1]);
+              const __m512d z47  = _mm512_permutex2var_pd(t[2], z, t[3]);
+              _mm512_store_pd(xe[n][0], _mm512_permutex2var_pd(xy03, low, xy47));
+              _mm512_store_pd(xe[n][1], _mm512_permutex2var_pd(xy03, high, xy47));
+              _mm512_store_pd(xe[n][2], _mm512_permutex2var_pd(z03, low, z47));
+            }
+          return;
+        }
+#endif
+      for (unsigned int n = 0; n < 8; ++n)
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int l = 0; l < W; ++l)
+            xe[n][a][l] = x[idx[n][l] + a];
     }
 
     /** x^(-1/3) for x between 1e-100 and 1e100 (a volume), with no call,
@@ -1245,13 +1297,8 @@ namespace anvil::Element
             for (unsigned int n = 0; n < 8; ++n)
               idx[n][l] = node(el[l], n);
         alignas(64) double xe[8][3][W], ve[8][3][W];
-        for (unsigned int n = 0; n < 8; ++n)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int l = 0; l < W; ++l)
-              {
-                xe[n][a][l] = x[idx[n][l] + a];
-                ve[n][a][l] = v[idx[n][l] + a];
-              }
+        gather_nodes(x, idx, xe);
+        gather_nodes(v, idx, ve);
 
         // Positions and velocities in the element's Walsh basis; the
         // Jacobians of position and velocity at the centroid.
