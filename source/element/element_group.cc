@@ -273,6 +273,23 @@ namespace anvil::Element
     /** Walsh index of Gamma_j (seed Eq. (42)): xi eta, eta zeta, xi zeta, xi eta zeta. */
     constexpr unsigned int gamma_index[4] = {3, 6, 5, 7};
 
+    /** The hourglass state (stiffness modes q_aj, resistance r_aj: 12
+        values an element) is stored by batch: entry k = 4 a + j of element
+        e at 12 B (e / B) + B k + e % B, B the batch size, so that the
+        batched loop reads and writes a batch's state as twelve aligned
+        lane vectors (a scalar gather of 96 values a batch before). The
+        arrays hold whole batches. */
+    constexpr unsigned int hourglass_batch = MaterialModel::Interface::batch_size;
+    inline std::size_t     hourglass_entry(const unsigned int e, const unsigned int k)
+    {
+      return std::size_t(12 * hourglass_batch) * (e / hourglass_batch) + hourglass_batch * k +
+             e % hourglass_batch;
+    }
+    inline std::size_t hourglass_size(const unsigned int n_elements)
+    {
+      return std::size_t(12 * hourglass_batch) * ((n_elements + hourglass_batch - 1) / hourglass_batch);
+    }
+
     /** The fast transform from @p in to @p out, per component and lane:
         forward, c_m = sum_n u_n psi_m(node n); inverse, u_n = sum_m c_m
         psi_m(node n). A stage on one bit (xi, then eta, then zeta) maps the
@@ -495,9 +512,9 @@ namespace anvil::Element
         }
     strength_factors = std::vector<double>();
     if (hourglass == HourglassType::stiffness)
-      hourglass_modes.assign(12 * n, 0.);
+      hourglass_modes.assign(hourglass_size(n), 0.);
     if (hourglass != HourglassType::none)
-      hourglass_resistance.assign(12 * n, 0.);
+      hourglass_resistance.assign(hourglass_size(n), 0.);
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
     shape_factor.assign(n, 1.);
@@ -943,25 +960,25 @@ namespace anvil::Element
                 // elastic stiffness (secant: r = k (1 - d) q).
                 k = 0.25 * hourglass_coefficient * M * std::cbrt(volume) *
                     (degrading ? stiffness_fraction(e * nq) : 1.);
-                double *q = &hourglass_modes[12 * e];
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int j = 0; j < 4; ++j)
                     {
-                      q[4 * a + j] += dt * h[a][j];
-                      r[a][j] = k * q[4 * a + j];
+                      double &q = hourglass_modes[hourglass_entry(e, 4 * a + j)];
+                      q += dt * h[a][j];
+                      r[a][j] = k * q;
                     }
               }
             // Work of the hourglass forces over the last step by the
             // trapezoidal rule, (r^{n-1} + r^n)/2 . h^{n-1/2} dt: the same
             // rule by which the central difference scheme moves energy, so
             // the balance also closes for modes that flip sign every step.
-            double  power = 0;
-            double *r_old = &hourglass_resistance[12 * e];
+            double power = 0;
             for (unsigned int a = 0; a < 3; ++a)
               for (unsigned int j = 0; j < 4; ++j)
                 {
-                  power += 0.5 * (r_old[4 * a + j] + r[a][j]) * h[a][j];
-                  r_old[4 * a + j] = r[a][j];
+                  double &r_old = hourglass_resistance[hourglass_entry(e, 4 * a + j)];
+                  power += 0.5 * (r_old + r[a][j]) * h[a][j];
+                  r_old = r[a][j];
                 }
             double u[3][3];
             for (unsigned int a = 0; a < 3; ++a)
@@ -1398,17 +1415,21 @@ namespace anvil::Element
             q_old[l] = bulk_viscosity() ? bulk_pressure[el[l]] : 0.;
           }
         alignas(64) double q_modes[3][4][W], stiffness[W];
+        // The batch's hourglass state (hourglass_entry()): a lane that
+        // repeats another element reads the state of its own slot, and
+        // keeps it; its results are never written back.
+        const std::size_t hg0 = hourglass_entry(e0, 0);
         if constexpr (H != HourglassType::none)
-          for (unsigned int l = 0; l < W; ++l)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int j = 0; j < 4; ++j)
-                r_old[a][j][l] = hourglass_resistance[12 * el[l] + 4 * a + j];
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int j = 0; j < 4; ++j)
+              for (unsigned int l = 0; l < W; ++l)
+                r_old[a][j][l] = hourglass_resistance[hg0 + W * (4 * a + j) + l];
         if constexpr (H == HourglassType::stiffness)
           for (unsigned int l = 0; l < W; ++l)
             {
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int j = 0; j < 4; ++j)
-                  q_modes[a][j][l] = hourglass_modes[12 * el[l] + 4 * a + j];
+                  q_modes[a][j][l] = hourglass_modes[hg0 + W * (4 * a + j) + l];
               stiffness[l] = degrading ? stiffness_fraction(el[l]) : 1.;
             }
 
@@ -1505,15 +1526,16 @@ namespace anvil::Element
                   G[a][c][l] += r[a][0][l] * t[0][c][l] + r[a][1][l] * t[1][c][l] +
                                 r[a][2][l] * t[2][c][l] + r[a][3][l] * t[3][c][l];
             // Write back the hourglass state of the live lanes.
-            for (unsigned int l = 0; l < W; ++l)
-              if (live[l])
-                for (unsigned int a = 0; a < 3; ++a)
-                  for (unsigned int j = 0; j < 4; ++j)
-                    {
-                      if constexpr (H == HourglassType::stiffness)
-                        hourglass_modes[12 * el[l] + 4 * a + j] += dt * h[a][j][l];
-                      hourglass_resistance[12 * el[l] + 4 * a + j] = r[a][j][l];
-                    }
+            // (The other lanes keep what their slots hold.)
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int j = 0; j < 4; ++j)
+                for (unsigned int l = 0; l < W; ++l)
+                  {
+                    const std::size_t i = hg0 + W * (4 * a + j) + l;
+                    if constexpr (H == HourglassType::stiffness)
+                      hourglass_modes[i] = live[l] ? q_modes[a][j][l] + dt * h[a][j][l] : q_modes[a][j][l];
+                    hourglass_resistance[i] = live[l] ? r[a][j][l] : r_old[a][j][l];
+                  }
           }
 
         // The nodal forces from their Walsh coefficients: G_ac / 8 on
