@@ -437,10 +437,11 @@ namespace anvil::Element
     /** The points' history (see n_hot). */
     std::vector<double> history;
     std::vector<double> cold_history;
-    /** Stiffness hourglass control: accumulated modes q_aj (12). */
+    /** Stiffness hourglass control: accumulated modes q_aj (12 an
+        element, stored by batch: hourglass_entry() in element_group.cc). */
     std::vector<double> hourglass_modes;
-    /** Hourglass resistance r_aj of the previous step (12), for the
-        trapezoidal hourglass work. */
+    /** Hourglass resistance r_aj of the previous step (12 an element,
+        stored like the modes), for the trapezoidal hourglass work. */
     std::vector<double> hourglass_resistance;
     std::vector<double> internal_energy;
     std::vector<double> hourglass_energy;
@@ -462,7 +463,8 @@ namespace anvil::Element
     /** Strength factor per element, until finalize() hands it to the
         material. */
     std::vector<double> strength_factors;
-    /** History of the padding lanes of the last batch. */
+    /** History of the padding lanes of a batch (copied in before every
+        use, so not part of the checkpoint). */
     std::vector<double> scratch_history;
     std::vector<double> scratch_cold_history;
     /** Full integration, updated Lagrangian: full_batched_loop() (false
@@ -475,7 +477,7 @@ namespace anvil::Element
     {
       ar &alive &stresses &history &cold_history &hourglass_modes &hourglass_resistance
         &internal_energy &hourglass_energy &bulk_pressure &shape_factor &n_calls &refresh_shape
-          &strength_factors &energy_weight &scratch_history &scratch_cold_history;
+          &strength_factors &energy_weight;
     }
   };
 } // namespace anvil::Element
