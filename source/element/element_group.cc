@@ -1418,18 +1418,23 @@ namespace anvil::Element
         // The batch's hourglass state (hourglass_entry()): a lane that
         // repeats another element reads the state of its own slot, and
         // keeps it; its results are never written back.
-        const std::size_t hg0 = hourglass_entry(e0, 0);
+        // (e0 is a multiple of W, so lane l of entry 4 a + j is at hg(a, j)
+        // + l.)
+        static_assert(W == hourglass_batch);
+        const auto hg = [hg0 = hourglass_entry(e0, 0)](const unsigned int a, const unsigned int j) {
+          return hg0 + W * (4 * a + j);
+        };
         if constexpr (H != HourglassType::none)
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int j = 0; j < 4; ++j)
               for (unsigned int l = 0; l < W; ++l)
-                r_old[a][j][l] = hourglass_resistance[hg0 + W * (4 * a + j) + l];
+                r_old[a][j][l] = hourglass_resistance[hg(a, j) + l];
         if constexpr (H == HourglassType::stiffness)
           for (unsigned int l = 0; l < W; ++l)
             {
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int j = 0; j < 4; ++j)
-                  q_modes[a][j][l] = hourglass_modes[hg0 + W * (4 * a + j) + l];
+                  q_modes[a][j][l] = hourglass_modes[hg(a, j) + l];
               stiffness[l] = degrading ? stiffness_fraction(el[l]) : 1.;
             }
 
@@ -1531,7 +1536,7 @@ namespace anvil::Element
               for (unsigned int j = 0; j < 4; ++j)
                 for (unsigned int l = 0; l < W; ++l)
                   {
-                    const std::size_t i = hg0 + W * (4 * a + j) + l;
+                    const std::size_t i = hg(a, j) + l;
                     if constexpr (H == HourglassType::stiffness)
                       hourglass_modes[i] = live[l] ? q_modes[a][j][l] + dt * h[a][j][l] : q_modes[a][j][l];
                     hourglass_resistance[i] = live[l] ? r[a][j][l] : r_old[a][j][l];
