@@ -494,7 +494,7 @@ namespace anvil::Element
   {
     const std::size_t n = cell_index.size();
     stresses.assign(6 * n * n_qp, 0.);
-    history.assign(n_hot * n * n_qp, 0.);
+    history.assign(n_hot * W * ((n * n_qp + W - 1) / W), 0.); // whole batches (hot_entry())
     cold_history.assign(n_cold * n * n_qp, 0.);
     if (n_hist > 0)
       for (std::size_t e = 0; e < n; ++e)
@@ -1049,6 +1049,7 @@ namespace anvil::Element
                                              double       *force)
   {
     constexpr unsigned int nq   = 8;
+    static_assert(nq == W, "an element's points are one batch of the history");
     const double           rho0 = material.density();
     const double           M    = material.wave_modulus();
     LoopResult             result;
@@ -1120,10 +1121,10 @@ namespace anvil::Element
             for (unsigned int l = 0; l < W; ++l)
               rotate_stress(spin[0][l], spin[1][l], spin[2][l], dt, sig[0][l], sig[1][l], sig[2][l],
                             sig[3][l], sig[4][l], sig[5][l]);
-            unsigned int points[W];
-            for (unsigned int l = 0; l < W; ++l)
-              points[l] = e * nq + l;
-            material.update_cauchy_stress_batch(D, spin, dt, sig, batch_history(points));
+            // (nq = W: the element's points are one stored batch.)
+            material.update_cauchy_stress_batch(D, spin, dt, sig,
+                                                n_hist ? batch_history(std::size_t(e) * nq) :
+                                                         MaterialModel::Interface::BatchHistory());
             // Seed Eq. (25) with the mid-step stress, per point.
             for (unsigned int l = 0; l < W; ++l)
               {
@@ -1368,19 +1369,24 @@ namespace anvil::Element
             deformation_rate_batch(Jd, Jmi, D, spin);
             // Padding lanes work on a scratch copy of the history, so that
             // the repeated last element is updated once only.
-            MaterialModel::Interface::BatchHistory hist = batch_history(el);
+            MaterialModel::Interface::BatchHistory hist;
             if (n_hist)
-              for (unsigned int l = 0; l < W; ++l)
-                if (!live[l])
-                  {
-                    const std::size_t p = el[l];
-                    scratch_history.resize(n_hot * W);
-                    scratch_cold_history.resize(n_cold * W);
-                    hist.hot[l]  = scratch_history.data() + n_hot * l;
-                    hist.cold[l] = scratch_cold_history.data() + n_cold * l;
-                    std::copy_n(history.data() + n_hot * p, n_hot, hist.hot[l]);
-                    std::copy_n(cold_history.data() + n_cold * p, n_cold, hist.cold[l]);
-                  }
+              {
+                hist = batch_history(e0);
+                for (unsigned int l = 0; l < W; ++l)
+                  if (!live[l])
+                    {
+                      const std::size_t p = el[l];
+                      scratch_history.resize(n_hot * W);
+                      scratch_cold_history.resize(n_cold * W);
+                      hist.hot[l]    = scratch_history.data() + l;
+                      hist.cold[l]   = scratch_cold_history.data() + n_cold * l;
+                      hist.hot_batch = nullptr;
+                      for (unsigned int k = 0; k < n_hot; ++k)
+                        hist.hot_value(l, k) = history[hot_entry(p, k)];
+                      std::copy_n(cold_history.data() + n_cold * p, n_cold, hist.cold[l]);
+                    }
+              }
             // The Hughes-Winget rotation of the stress across lanes (the
             // material rotates its own history).
             for (unsigned int l = 0; l < W; ++l)

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <type_traits>
 
@@ -990,8 +991,8 @@ namespace anvil::MaterialModel
         Interface::update_cauchy_stress_batch(D, spin, dt, s, history);
         return;
       }
-    // The hot values of lane l at hot[l][k], the others at cold[l][k - n_hot].
-    double *const(&hot)[W]  = history.hot;
+    // The hot values through history.load() and hot_value(), the others
+    // at cold[l][k - n_hot].
     double *const(&cold)[W] = history.cold;
 
     alignas(64) double sbar[6][W], sbar_old[6][W], dsig[6][W], stored_old[W], rate[W],
@@ -999,22 +1000,31 @@ namespace anvil::MaterialModel
     alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
       mean_stress[W];
     alignas(64) double elastic[W]; // 1: inside the surfaces
-    alignas(64) double cdif[W], tdif[W];
+    alignas(64) double cdif[W], tdif[W], undamaged[W];
     // What every point needs: its damage (d_t, d_c), its cohesions (c_t,
     // c_c) and its filtered rate. The rest of the history is read only
     // where a lane is damaged or leaves the surfaces.
-    bool undamaged_batch = true;
-    bool undamaged[W];
+    history.load(i_tensile_cohesion, hv[2]);
+    history.load(i_compressive_cohesion, hv[3]);
+    history.load(i_tensile_damage, hv[4]);
+    history.load(i_compressive_damage, hv[5]);
+    history.load(i_rate, rate);
+    alignas(64) std::uint64_t damaged[W];
+    std::uint64_t             any_damaged = 0;
     for (unsigned int l = 0; l < W; ++l)
       {
-        hv[2][l]     = hot[l][i_tensile_cohesion];
-        hv[3][l]     = hot[l][i_compressive_cohesion];
-        hv[4][l]     = hot[l][i_tensile_damage];
-        hv[5][l]     = hot[l][i_compressive_damage];
-        rate[l]      = hot[l][i_rate];
-        undamaged[l] = (hv[4][l] == 0.) & (hv[5][l] == 0.);
-        undamaged_batch &= undamaged[l];
+        const bool intact = (hv[4][l] == 0.) & (hv[5][l] == 0.);
+        undamaged[l]      = intact ? 1. : 0.;
+        damaged[l]        = intact ? 0 : 1;
       }
+    for (unsigned int l = 0; l < W; ++l)
+      any_damaged |= damaged[l];
+    const bool undamaged_batch = any_damaged == 0;
+    // The filtered rate first: its principal values are a long chain of
+    // dependent divisions and roots that the out-of-order core overlaps
+    // with the trial below, which does not need it.
+    if (par.rate_effects)
+      update_rate(D, dt, rate);
     // The old effective stress, rotated with the material like the stress.
     // An undamaged point's effective stress is its stress (1 - d = 1; see
     // the header), which arrives rotated: a batch of undamaged points
@@ -1035,7 +1045,7 @@ namespace anvil::MaterialModel
                                     sbar_old[4][l], sbar_old[5][l]);
         for (unsigned int k = 0; k < 6; ++k)
           for (unsigned int l = 0; l < W; ++l)
-            sbar_old[k][l] = undamaged[l] ? s[k][l] : sbar_old[k][l];
+            sbar_old[k][l] = undamaged[l] != 0. ? s[k][l] : sbar_old[k][l];
       }
     // The elastic trial, its mean stress and von Mises stress.
     for (unsigned int l = 0; l < W; ++l)
@@ -1065,24 +1075,32 @@ namespace anvil::MaterialModel
     // the sum of round-off is not kept either. Only its rate is stored.
     if (undamaged_batch)
       {
-        bool all_inside = true;
+        // (The test multiplied through by c_t (1 - alpha) > 0, so that it
+        // needs no division and the loop becomes a few vector operations:
+        // F <= -margin reads c_t (q + 3 alpha p + gamma <s>-) + c_t beta
+        // <s>+ <= c_t (1 - alpha) (c_c - margin), c_t beta = c_c (1 -
+        // alpha) - (1 + alpha) c_t. It differs from the quotient form by
+        // round-off, far inside the margin.)
+        alignas(64) std::uint64_t outside[W];
         for (unsigned int l = 0; l < W; ++l)
           {
-            const double q = von_mises[l], mean = mean_stress[l];
-            const bool   beta_nonnegative =
-              hv[3][l] * (1. - alpha) >= (1. + alpha) * hv[2][l];
-            all_inside &= beta_nonnegative &
-                          inside_surfaces(q, mean, mean + 2. / 3. * q, hv[2][l], hv[3][l],
-                                          1e-7 * (std::abs(mean) + q));
+            const double q = von_mises[l], mean = mean_stress[l], c_t = hv[2][l], c_c = hv[3][l];
+            const double s_max     = mean + 2. / 3. * q;
+            const double margin    = 1e-7 * (std::abs(mean) + q);
+            const double beta_ct   = c_c * (1. - alpha) - (1. + alpha) * c_t;
+            const double lhs       = c_t * (q + 3. * alpha * mean + gamma * std::min(s_max, 0.)) +
+                               beta_ct * std::max(s_max, 0.);
+            const bool   inside    = (beta_ct >= 0.) & (s_max <= c_t - margin) &
+                                (lhs <= c_t * (1. - alpha) * (c_c - margin));
+            outside[l] = inside ? 0 : 1;
           }
-        if (all_inside)
+        std::uint64_t any_outside = 0;
+        for (unsigned int l = 0; l < W; ++l)
+          any_outside |= outside[l];
+        if (any_outside == 0)
           {
             if (par.rate_effects)
-              {
-                update_rate(D, dt, rate);
-                for (unsigned int l = 0; l < W; ++l)
-                  hot[l][i_rate] = rate[l];
-              }
+              history.store(i_rate, rate);
             for (unsigned int k = 0; k < 6; ++k)
               for (unsigned int l = 0; l < W; ++l)
                 s[k][l] = sbar[k][l];
@@ -1157,28 +1175,25 @@ namespace anvil::MaterialModel
       trial(std::true_type());
     else
       trial(std::false_type());
-    if (par.rate_effects)
-      update_rate(D, dt, rate);
 
     for (unsigned int l = 0; l < W; ++l)
       {
-        double *hl = hot[l], *cl = cold[l];
+        double *cl = cold[l];
         for (unsigned int k = 0; k < 6; ++k)
           cl[i_effective_stress - n_hot + k] = sbar[k][l];
         if (par.rate_effects)
           {
-            hl[i_rate] = rate[l];
+            history.hot_value(l, i_rate) = rate[l];
             // Second stage: outside at the static cohesions, perhaps inside
             // at the dynamic ones.
             // (The return mapping of a point outside at both takes its
             // factors from here.)
             if (elastic[l] == 0.)
               {
-                tdif[l]    = ConcreteDIF::tensile(hl[i_rate], par.dif_strength);
-                cdif[l]    = ConcreteDIF::compressive(hl[i_rate], par.cube_strength);
+                tdif[l]    = ConcreteDIF::tensile(rate[l], par.dif_strength);
+                cdif[l]    = ConcreteDIF::compressive(rate[l], par.cube_strength);
                 elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], largest[l],
-                                             tdif[l] * hl[i_tensile_cohesion],
-                                             cdif[l] * hl[i_compressive_cohesion], margin[l]);
+                                             tdif[l] * hv[2][l], cdif[l] * hv[3][l], margin[l]);
               }
           }
         if (elastic[l] != 0.)

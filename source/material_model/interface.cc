@@ -31,14 +31,10 @@ namespace anvil
       const bool rotate = has_tensorial_history();
       for (unsigned int l = 0; l < batch_size; ++l)
         {
-          // The point's history in one piece (a copy where it is split).
-          double  buffer[max_history];
-          double *h = history.hot[l];
-          if (history.n_cold > 0)
-            {
-              history.gather(l, buffer);
-              h = buffer;
-            }
+          // The point's history in one piece (a copy: the hot values are
+          // stored by batch).
+          double h[max_history];
+          history.gather(l, h);
           if (rotate)
             rotate_history(spin[0][l], spin[1][l], spin[2][l], dt, h);
           double d[6], s[6];
@@ -50,8 +46,7 @@ namespace anvil
           update_cauchy_stress(d, dt, s, h);
           for (unsigned int k = 0; k < 6; ++k)
             stress[k][l] = s[k];
-          if (history.n_cold > 0)
-            history.scatter(l, buffer);
+          history.scatter(l, h);
         }
     }
 

@@ -10,6 +10,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 
 namespace anvil::MaterialModel
@@ -264,27 +265,27 @@ namespace anvil::MaterialModel
                                                     const BatchHistory &history) const
   {
     constexpr unsigned int W = batch_size;
+    // The history (back stress, eps_p, plastic work, rate) into lanes.
     // (The whole history is hot: n_hot_history() is n_history().)
-    double *const(&h)[W] = history.hot;
-    // Gather the history (back stress, eps_p, plastic work, rate) into
-    // lanes.
-    double alpha[6][W], eps_p[W], work[W], rate[W], R[W];
-    for (unsigned int l = 0; l < W; ++l)
-      {
-        for (unsigned int k = 0; k < 6; ++k)
-          alpha[k][l] = h[l][k];
-        eps_p[l] = h[l][6];
-        work[l]  = h[l][7];
-        rate[l]  = h[l][8];
-      }
+    alignas(64) double alpha[6][W], eps_p[W], work[W], rate[W], R[W];
+    for (unsigned int k = 0; k < 6; ++k)
+      history.load(k, alpha[k]);
+    history.load(6, eps_p);
+    history.load(7, work);
+    history.load(8, rate);
     // The back stress rotates with the material, like the stress (it is
     // zero until the point first yields): rotated across the batch when a
     // point of it has yielded, kept in the lanes of those that have not
     // (a select, so that the loop vectorises).
-    bool any_yielded = false;
+    // (Lane flags as integers, OR-reduced: a loop of vector operations,
+    // where a reduction of bools stays scalar.)
+    alignas(64) std::uint64_t flag[W];
+    std::uint64_t             any_yielded = 0;
     for (unsigned int l = 0; l < W; ++l)
-      any_yielded |= (eps_p[l] > 0);
-    if (any_yielded)
+      flag[l] = eps_p[l] > 0 ? 1 : 0;
+    for (unsigned int l = 0; l < W; ++l)
+      any_yielded |= flag[l];
+    if (any_yielded != 0)
       for (unsigned int l = 0; l < W; ++l)
         {
           double a[6] = {alpha[0][l], alpha[1][l], alpha[2][l], alpha[3][l], alpha[4][l], alpha[5][l]};
@@ -332,10 +333,12 @@ namespace anvil::MaterialModel
           R[l] = law.rate_factor(rate[l]);
     // A batch whose trial stresses are all within the yield surface keeps
     // them (the return below would change nothing: dep = 0).
-    bool any_plastic = false;
+    std::uint64_t any_plastic = 0;
     for (unsigned int l = 0; l < W; ++l)
-      any_plastic |= std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], R[l]);
-    if (any_plastic)
+      flag[l] = std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], R[l]) ? 1 : 0;
+    for (unsigned int l = 0; l < W; ++l)
+      any_plastic |= flag[l];
+    if (any_plastic != 0)
       {
         // The radial return of every lane at once (dep = 0 leaves an
         // elastic lane's stress, back stress and work as they are), in
@@ -363,18 +366,18 @@ namespace anvil::MaterialModel
           work[l] += c[l] * (s[0][l] * xi[0][l] + s[1][l] * xi[1][l] + s[2][l] * xi[2][l] +
                              2. * (s[3][l] * xi[3][l] + s[4][l] * xi[4][l] + s[5][l] * xi[5][l]));
       }
-    // A point that never yielded keeps its zeros: only the rate is new.
-    for (unsigned int l = 0; l < W; ++l)
+    // A batch whose points never yielded keeps its zeros: only the rate
+    // is new, and only with rate effects. (A lane that never yielded in a
+    // batch that did stores its zeros again.)
+    if (any_yielded != 0 || any_plastic != 0)
       {
-        if (eps_p[l] > 0)
-          {
-            for (unsigned int k = 0; k < 6; ++k)
-              h[l][k] = alpha[k][l];
-            h[l][6] = eps_p[l];
-            h[l][7] = work[l];
-          }
-        h[l][8] = rate[l];
+        for (unsigned int k = 0; k < 6; ++k)
+          history.store(k, alpha[k]);
+        history.store(6, eps_p);
+        history.store(7, work);
       }
+    if (law.rate_effects)
+      history.store(8, rate);
   }
 
 

@@ -225,7 +225,7 @@ namespace anvil::Element
     double history_variable(const unsigned int e, const unsigned int q, const unsigned int k) const
     {
       const std::size_t p = e * n_qp + q;
-      return k < n_hot ? history[n_hot * p + k] : cold_history[n_cold * p + k - n_hot];
+      return k < n_hot ? history[hot_entry(p, k)] : cold_history[n_cold * p + k - n_hot];
     }
     /** All history variables of quadrature point q of element e (n_history()
         values) into @p h. */
@@ -365,26 +365,33 @@ namespace anvil::Element
     const unsigned int              n_qp;
     const unsigned int              n_hist;
     /** The history's split (MaterialModel::Interface::n_hot_history()):
-        the first n_hot values of every point in history, the other
-        n_cold in cold_history. */
+        the first n_hot values of every point in history, stored by batch
+        of W points (hot_entry()), the other n_cold in cold_history, n_cold
+        contiguous values a point. */
     const unsigned int              n_hot;
     const unsigned int              n_cold;
-    /** Point p's whole history: its own storage where the history is not
-        split, else a copy in @p buffer, which store_history() writes back. */
+    /** Where hot value k of point p is: by batch of W points, value k of
+        the batch's points side by side, so that a batch reads value k of
+        its lanes as one vector. The array holds whole batches. */
+    std::size_t hot_entry(const std::size_t p, const unsigned int k) const
+    {
+      return n_hot * W * (p / W) + W * std::size_t(k) + p % W;
+    }
+    /** Point p's whole history, a copy in @p buffer, which store_history()
+        writes back (nullptr for a model without history). */
     double *point_history(const std::size_t p, double *buffer)
     {
       if (n_hist == 0)
         return nullptr;
-      if (n_cold == 0)
-        return history.data() + n_hot * p;
       copy_history(p / n_qp, p % n_qp, buffer);
       return buffer;
     }
     void store_history(const std::size_t p, const double *h)
     {
-      if (n_cold == 0 || h == nullptr)
+      if (h == nullptr)
         return;
-      std::copy_n(h, n_hot, history.data() + n_hot * p);
+      for (unsigned int k = 0; k < n_hot; ++k)
+        history[hot_entry(p, k)] = h[k];
       std::copy_n(h + n_hot, n_cold, cold_history.data() + n_cold * p);
     }
     /** The material's point_failed() and stiffness_fraction() of point p. */
@@ -393,21 +400,29 @@ namespace anvil::Element
       double buffer[MaterialModel::Interface::max_history];
       return material.point_failed(point_history(p, buffer));
     }
-    /** (It reads hot values only: no copy.) */
+    /** (It reads hot values only: a copy of those.) */
     double stiffness_fraction(const std::size_t p) const
     {
-      return material.stiffness_fraction(history.data() + n_hot * p);
+      double h[MaterialModel::Interface::max_history];
+      for (unsigned int k = 0; k < n_hot; ++k)
+        h[k] = history[hot_entry(p, k)];
+      return material.stiffness_fraction(h);
     }
-    /** The split history of a batch whose lane l is point @p points[l]. */
-    MaterialModel::Interface::BatchHistory batch_history(const unsigned int (&points)[MaterialModel::Interface::batch_size])
+    /** The split history of the batch of points p0, ..., p0 + W - 1 (p0 a
+        multiple of W) as stored: hot value k of its lanes at hot_batch +
+        W k. (A lane that is not one of these points is redirected by the
+        caller, which then clears hot_batch.) */
+    MaterialModel::Interface::BatchHistory batch_history(const std::size_t p0)
     {
       MaterialModel::Interface::BatchHistory h;
-      h.n_hot  = n_hot;
-      h.n_cold = n_cold;
+      h.n_hot      = n_hot;
+      h.n_cold     = n_cold;
+      h.hot_stride = W;
+      h.hot_batch  = history.data() + hot_entry(p0, 0);
       for (unsigned int l = 0; l < W; ++l)
         {
-          h.hot[l]  = history.data() + n_hot * std::size_t(points[l]);
-          h.cold[l] = cold_history.data() + n_cold * std::size_t(points[l]);
+          h.hot[l]  = h.hot_batch + l;
+          h.cold[l] = cold_history.data() + n_cold * (p0 + l);
         }
       return h;
     }
@@ -434,7 +449,7 @@ namespace anvil::Element
     /** Weight times reference Jacobian determinant per point. */
     std::vector<double> jxw_ref;
     std::vector<double> stresses;
-    /** The points' history (see n_hot). */
+    /** The points' history (see n_hot and hot_entry()). */
     std::vector<double> history;
     std::vector<double> cold_history;
     /** Stiffness hourglass control: accumulated modes q_aj (12 an
@@ -463,8 +478,8 @@ namespace anvil::Element
     /** Strength factor per element, until finalize() hands it to the
         material. */
     std::vector<double> strength_factors;
-    /** History of the padding lanes of a batch (copied in before every
-        use, so not part of the checkpoint). */
+    /** History of the padding lanes of a batch, stored like one batch
+        (copied in before every use, so not part of the checkpoint). */
     std::vector<double> scratch_history;
     std::vector<double> scratch_cold_history;
     /** Full integration, updated Lagrangian: full_batched_loop() (false

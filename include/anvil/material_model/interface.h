@@ -11,6 +11,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cstddef>
 #include <functional>
 #include <map>
 #include <memory>
@@ -232,21 +233,56 @@ namespace anvil
 
       /**
        * The history of a batch's points, as the element kernels store it:
-       * the first n_hot values of point l (n_hot_history()) at hot[l], the
-       * other n_cold at cold[l].
+       * the first n_hot values of point l (n_hot_history()) at hot[l],
+       * value k at hot[l][k * hot_stride]; the other n_cold at cold[l],
+       * contiguous. The kernels store the hot values by batch (value k of
+       * lanes 0..7 side by side, hot_stride = batch_size), so that where
+       * the lanes are one stored batch in order (the usual case: not the
+       * padding of the last batch, nor a batch with eroded elements)
+       * hot_batch points at it and load() and store() move value k of all
+       * lanes as one vector.
        */
       struct BatchHistory
       {
         double      *hot[batch_size];
         double      *cold[batch_size];
-        unsigned int n_hot  = 0;
-        unsigned int n_cold = 0;
+        unsigned int n_hot      = 0;
+        unsigned int n_cold     = 0;
+        unsigned int hot_stride = 1;
+        /** hot[0] where hot[l] = hot[0] + l and hot_stride = batch_size,
+            else nullptr. */
+        double *hot_batch = nullptr;
 
+        /** Hot value k of lane l. */
+        double &hot_value(const unsigned int l, const unsigned int k) const
+        {
+          return hot[l][std::size_t(k) * hot_stride];
+        }
+        /** Hot value k of every lane into @p v. */
+        void load(const unsigned int k, double (&v)[batch_size]) const
+        {
+          if (hot_batch != nullptr)
+            for (unsigned int l = 0; l < batch_size; ++l)
+              v[l] = hot_batch[k * batch_size + l];
+          else
+            for (unsigned int l = 0; l < batch_size; ++l)
+              v[l] = hot_value(l, k);
+        }
+        /** And back. */
+        void store(const unsigned int k, const double (&v)[batch_size]) const
+        {
+          if (hot_batch != nullptr)
+            for (unsigned int l = 0; l < batch_size; ++l)
+              hot_batch[k * batch_size + l] = v[l];
+          else
+            for (unsigned int l = 0; l < batch_size; ++l)
+              hot_value(l, k) = v[l];
+        }
         /** Point l's whole history (n_hot + n_cold values) into @p h. */
         void gather(const unsigned int l, double *h) const
         {
           for (unsigned int k = 0; k < n_hot; ++k)
-            h[k] = hot[l][k];
+            h[k] = hot_value(l, k);
           for (unsigned int k = 0; k < n_cold; ++k)
             h[n_hot + k] = cold[l][k];
         }
@@ -254,7 +290,7 @@ namespace anvil
         void scatter(const unsigned int l, const double *h) const
         {
           for (unsigned int k = 0; k < n_hot; ++k)
-            hot[l][k] = h[k];
+            hot_value(l, k) = h[k];
           for (unsigned int k = 0; k < n_cold; ++k)
             cold[l][k] = h[n_hot + k];
         }
