@@ -47,16 +47,23 @@ namespace anvil::Kinematics
    * eigenvalues are s = p t with t^3 - 3 t = 2 r, r = J3 / (2 p^3) in
    * [-1, 1]. For r >= 0 the largest root t_1 in [sqrt 3, 2] is a simple
    * root (a double root needs r = -1), an analytic function of r (the
-   * inverse of (t^3 - 3 t) / 2, whose slope is 3 to 4.5 there). Newton
-   * starts from its cubic Chebyshev interpolant on [0, 1], within 8.2e-5
-   * of it, and contracts the error e to about 0.8 e^2: two steps reach
-   * 6.7e-16 at worst over [0, 1], a third the iteration's fixed point,
-   * which the deflated root needs near r = 1 (its slope in t grows like
-   * 1 / sqrt(4 - t^2)); the former start, 2 - 2/9 (1 - r), took four
-   * steps. For r < 0 the
-   * same solve for -r gives the smallest root. The other extreme follows
-   * from the quadratic left after deflation, s = -(t +- sqrt(3 (4 - t^2)))
-   * p / 2.
+   * inverse of (t^3 - 3 t) / 2, whose slope is 3 to 4.5 there), whose
+   * nearest singularity is r = -1. Its Chebyshev interpolant of degree 9
+   * in x = 2 r - 1 is within 5.3e-10 of it on [0, 1] (monomial
+   * coefficients in x below 1.9, evaluated by Estrin's scheme: four levels
+   * of independent multiply-adds instead of nine in a row), and one Newton
+   * step, whose error is about 0.8 e^2, takes that to round-off: the next
+   * step moves it by at most one unit in the last place (checked on 4e5
+   * points of [0, 1]), so the value is the iteration's fixed point as
+   * three steps from a cubic start were before. For r < 0 the same solve
+   * for -r gives the smallest root. The other extreme follows from the
+   * quadratic left after deflation, s = -(t +- sqrt(3 (4 - t^2))) p / 2.
+   *
+   * The function is a chain of dependent operations whose latency, not
+   * its operation count, is its cost in the element loop (the core must
+   * retire it before the batch's later work): so p = sqrt(p^2) and 1 / p^2
+   * run side by side, r = (J3 / (2 p^2)) (p / p^2), and the start needs
+   * one division where the cubic start's three Newton steps needed three.
    */
   inline void extreme_principal_values(const double a0, const double a1, const double a2,
                                        const double a3, const double a4, const double a5,
@@ -68,13 +75,19 @@ namespace anvil::Kinematics
     const double J3 = a * (b * c - a4 * a4) - a3 * (a3 * c - a4 * a5) + a5 * (a3 * a4 - b * a5);
     const double p2 = J2 / 3.;
     const double p  = std::sqrt(p2);
+    const double ip2 = 1. / p2;
     // Zero deviator (to round-off of the mean): all three equal m.
     const bool   spherical = !(J2 > 1e-30 * (m * m + 1e-300));
-    const double r  = spherical ? 0. : std::clamp(J3 / (2. * p2 * p), -1., 1.);
+    const double r  = spherical ? 0. : std::clamp((0.5 * J3 * ip2) * (p * ip2), -1., 1.);
     const double ra = std::abs(r);
-    double       t  = 1.73213266 + ra * (0.3306607 + ra * (-0.08138239 + ra * 0.01863937));
-    for (unsigned int it = 0; it < 3; ++it)
-      t -= (t * t * t - 3. * t - 2. * ra) / (3. * t * t - 3.);
+    const double x = 2. * ra - 1., x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+    double       t = ((1.8793852411943512 + 0.13164361465425195 * x) +
+                (-0.012862809134103825 + 0.0022133044535502526 * x) * x2) +
+               ((-0.00046743994464176655 + 0.00010987210414801902 * x) +
+                (-2.7172480083067206e-05 + 7.127861673771623e-06 * x) * x2) *
+                 x4 +
+               (-2.415438424643636e-06 + 6.770221431883365e-07 * x) * x8;
+    t -= (t * t * t - 3. * t - 2. * ra) / (3. * t * t - 3.);
     const double simple = p * t;
     const double other  = 0.5 * p * (t + std::sqrt(std::max(3. * (4. - t * t), 0.)));
     largest  = spherical ? m : m + (r >= 0 ? simple : other);
