@@ -274,20 +274,12 @@ namespace anvil::Element
     constexpr unsigned int gamma_index[4] = {3, 6, 5, 7};
 
     /** The hourglass state (stiffness modes q_aj, resistance r_aj: 12
-        values an element) is stored by batch: entry k = 4 a + j of element
-        e at 12 B (e / B) + B k + e % B, B the batch size, so that the
-        batched loop reads and writes a batch's state as twelve aligned
-        lane vectors (a scalar gather of 96 values a batch before). The
-        arrays hold whole batches. */
-    constexpr unsigned int hourglass_batch = MaterialModel::Interface::batch_size;
-    inline std::size_t     hourglass_entry(const unsigned int e, const unsigned int k)
+        values an element) is stored by batch (batch_major_entry()), so
+        that the batched loop reads and writes a batch's state as twelve
+        aligned lane vectors (a scalar gather of 96 values a batch before). */
+    inline std::size_t hourglass_entry(const unsigned int e, const unsigned int k)
     {
-      return std::size_t(12 * hourglass_batch) * (e / hourglass_batch) + hourglass_batch * k +
-             e % hourglass_batch;
-    }
-    inline std::size_t hourglass_size(const unsigned int n_elements)
-    {
-      return std::size_t(12 * hourglass_batch) * ((n_elements + hourglass_batch - 1) / hourglass_batch);
+      return batch_major_entry(e, k, 12);
     }
 
     /** The fast transform from @p in to @p out, per component and lane:
@@ -494,8 +486,10 @@ namespace anvil::Element
   {
     const std::size_t n = cell_index.size();
     stresses.assign(6 * n * n_qp, 0.);
-    history.assign(n_hot * W * ((n * n_qp + W - 1) / W), 0.); // whole batches (hot_entry())
+    history.assign(batch_major_size(n * n_qp, n_hot), 0.);
     cold_history.assign(n_cold * n * n_qp, 0.);
+    scratch_history.assign(n_hot * W, 0.);
+    scratch_cold_history.assign(n_cold * W, 0.);
     if (n_hist > 0)
       for (std::size_t e = 0; e < n; ++e)
         {
@@ -512,9 +506,9 @@ namespace anvil::Element
         }
     strength_factors = std::vector<double>();
     if (hourglass == HourglassType::stiffness)
-      hourglass_modes.assign(hourglass_size(n), 0.);
+      hourglass_modes.assign(batch_major_size(n, 12), 0.);
     if (hourglass != HourglassType::none)
-      hourglass_resistance.assign(hourglass_size(n), 0.);
+      hourglass_resistance.assign(batch_major_size(n, 12), 0.);
     internal_energy.assign(n, 0.);
     hourglass_energy.assign(n, 0.);
     shape_factor.assign(n, 1.);
@@ -1377,8 +1371,6 @@ namespace anvil::Element
                   if (!live[l])
                     {
                       const std::size_t p = el[l];
-                      scratch_history.resize(n_hot * W);
-                      scratch_cold_history.resize(n_cold * W);
                       hist.hot[l]    = scratch_history.data() + l;
                       hist.cold[l]   = scratch_cold_history.data() + n_cold * l;
                       hist.hot_batch = nullptr;
@@ -1426,7 +1418,6 @@ namespace anvil::Element
         // keeps it; its results are never written back.
         // (e0 is a multiple of W, so lane l of entry 4 a + j is at hg(a, j)
         // + l.)
-        static_assert(W == hourglass_batch);
         const auto hg = [hg0 = hourglass_entry(e0, 0)](const unsigned int a, const unsigned int j) {
           return hg0 + W * (4 * a + j);
         };

@@ -32,6 +32,24 @@
 
 namespace anvil::Element
 {
+  /** Per-item arrays stored by batch of B = Interface::batch_size items
+      (the hourglass state, the materials' hot history): value k of item i
+      at n_values B (i / B) + B k + i % B, so that a batch reads and writes
+      value k of its lanes as one aligned vector. Such arrays hold whole
+      batches (batch_major_size()). */
+  inline std::size_t batch_major_entry(const std::size_t  i,
+                                       const unsigned int k,
+                                       const unsigned int n_values)
+  {
+    constexpr unsigned int B = MaterialModel::Interface::batch_size;
+    return std::size_t(n_values) * B * (i / B) + std::size_t(B) * k + i % B;
+  }
+  inline std::size_t batch_major_size(const std::size_t n_items, const unsigned int n_values)
+  {
+    constexpr unsigned int B = MaterialModel::Interface::batch_size;
+    return std::size_t(n_values) * B * ((n_items + B - 1) / B);
+  }
+
   /** Element integration rule. */
   enum class Integration
   {
@@ -370,12 +388,10 @@ namespace anvil::Element
         contiguous values a point. */
     const unsigned int              n_hot;
     const unsigned int              n_cold;
-    /** Where hot value k of point p is: by batch of W points, value k of
-        the batch's points side by side, so that a batch reads value k of
-        its lanes as one vector. The array holds whole batches. */
+    /** Where hot value k of point p is (batch_major_entry()). */
     std::size_t hot_entry(const std::size_t p, const unsigned int k) const
     {
-      return n_hot * W * (p / W) + W * std::size_t(k) + p % W;
+      return batch_major_entry(p, k, n_hot);
     }
     /** Point p's whole history, a copy in @p buffer, which store_history()
         writes back (nullptr for a model without history). */
@@ -479,7 +495,8 @@ namespace anvil::Element
         material. */
     std::vector<double> strength_factors;
     /** History of the padding lanes of a batch, stored like one batch
-        (copied in before every use, so not part of the checkpoint). */
+        (sized in finalize(), copied in before every use, so not part of
+        the checkpoint). */
     std::vector<double> scratch_history;
     std::vector<double> scratch_cold_history;
     /** Full integration, updated Lagrangian: full_batched_loop() (false
