@@ -509,17 +509,20 @@ namespace anvil::MaterialModel
   //
   // Two surfaces: Lubliner's F and the tension cut-off max sigma_bar_i <=
   // c_t. Each return is exact on its own; when one leaves the other
-  // violated (rare: equibiaxial and triaxial tension) they alternate.
-  void ConcreteDamagedPlasticity::return_map(double       *sbar,
-                                             double       *h,
-                                             const double  cdif,
-                                             const double  tdif,
-                                             double (&principal)[3]) const
+  // violated (rare: equibiaxial and triaxial tension) they alternate. The
+  // first return to Lubliner's surface is the caller's (the batched update
+  // makes those of its inelastic points at once); the rest follows here.
+  void ConcreteDamagedPlasticity::complete_return(double      *sbar,
+                                                  double      *h,
+                                                  const double cdif,
+                                                  const double tdif,
+                                                  double (&principal)[3],
+                                                  bool         lubliner) const
   {
-    principal_values(sbar, principal);
     for (unsigned int it = 0; it < 8; ++it)
       {
-        const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
+        if (it > 0)
+          lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
         if (!tension_cutoff(sbar, h, tdif, principal) || (it > 0 && !lubliner))
           break;
       }
@@ -630,24 +633,96 @@ namespace anvil::MaterialModel
                                                   const double tdif,
                                                   double (&sp)[3]) const
   {
-    const double mean_tr = (sp[0] + sp[1] + sp[2]) / 3.;
-    const double s_tr[3] = {sp[0] - mean_tr, sp[1] - mean_tr, sp[2] - mean_tr};
-    const double q_tr =
-      std::sqrt(1.5 * (s_tr[0] * s_tr[0] + s_tr[1] * s_tr[1] + s_tr[2] * s_tr[2]));
-    const double kt0 = h[i_kappa_t], kc0 = h[i_kappa_c];
-    const double len = h[i_length], f = h[i_strength_factor];
-    const double K   = bulk_modulus();
-    const double a2  = eccentric_term * eccentric_term;
+    // One point: lane 0 of the lanes' return (the batched update returns
+    // several points at once through the same code, so that a point's
+    // result does not depend on how many others share its return).
+    constexpr unsigned int W = batch_size;
+    double *sbars[W] = {sbar}, *hs[W] = {h};
+    alignas(64) double        cdifs[W], tdifs[W], principal[3][W];
+    alignas(64) std::uint64_t active[W] = {1}, returned[W];
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        cdifs[l] = cdif;
+        tdifs[l] = tdif;
+        for (unsigned int i = 0; i < 3; ++i)
+          principal[i][l] = sp[i];
+      }
+    lubliner_return_lanes(sbars, hs, cdifs, tdifs, principal, active, returned);
+    for (unsigned int i = 0; i < 3; ++i)
+      sp[i] = principal[i][0];
+    return returned[0] != 0;
+  }
 
-    // The static cohesions at the start; F at hardening variables kt, kc
-    // (a variable that did not move keeps its cohesion: no curve lookup).
-    double       dct0, dcc0;
-    const double ct0 = tensile_cohesion(kt0, len, f, dct0), cc0 = compressive_cohesion(kc0, f, dcc0);
-    const double F0  = yield_function(q_tr, mean_tr, sp[0], tdif * ct0, cdif * cc0);
-    const double tol = 1e-10 * par.curves.compressive_strength;
-    if (!(F0 > tol))
-      return false;
-    ++lubliner_returns;
+
+  // The return of the lanes in @p active at once. Every lane runs the same
+  // arithmetic, lane by lane in vector registers; where the scalar
+  // iteration of one point would branch (its convergence tests, the
+  // bracket, Newton's step against the secant), the lanes select. A lane
+  // whose iteration has stopped keeps its state while the others go on, so
+  // a lane's result is the one it would have alone. Only the curve lookups
+  // (a table search each) go lane by lane.
+  //
+  // (noipa: the one-point wrapper must not get its own copy of this code,
+  // specialised for one lane and perhaps contracted differently.)
+  [[gnu::noipa]] void ConcreteDamagedPlasticity::lubliner_return_lanes(
+    double *const (&sbar)[batch_size],
+    double *const (&h)[batch_size],
+    const double (&cdif)[batch_size],
+    const double (&tdif)[batch_size],
+    double (&sp)[3][batch_size],
+    const std::uint64_t (&active)[batch_size],
+    std::uint64_t (&returned)[batch_size]) const
+  {
+    constexpr unsigned int W   = batch_size;
+    const double           K   = bulk_modulus();
+    const double           a2  = eccentric_term * eccentric_term;
+    const double           tol = 1e-10 * par.curves.compressive_strength;
+    // (The model's constants as locals: a member read under a condition
+    // would be a masked load, which keeps a loop from vectorising.)
+    const double mu = this->mu, alpha = this->alpha, gamma = this->gamma, tan_psi = this->tan_psi;
+
+    // The trial: its invariants, hardening variables and static cohesions
+    // (an inactive lane gets a zero state, outside no surface).
+    alignas(64) double mean_tr[W], s_tr[3][W], q_tr[W], kt0[W], kc0[W], len[W], fs[W];
+    alignas(64) double ct0[W], cc0[W], dct0[W], dcc0[W], F0[W], s_trial[3][W];
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        const bool on = active[l] != 0;
+        kt0[l]        = on ? h[l][i_kappa_t] : 0.;
+        kc0[l]        = on ? h[l][i_kappa_c] : 0.;
+        len[l]        = on ? h[l][i_length] : 1.;
+        fs[l]         = on ? h[l][i_strength_factor] : 1.;
+        ct0[l] = cc0[l] = 1.;
+        dct0[l] = dcc0[l] = 0.;
+        if (on)
+          {
+            ct0[l] = tensile_cohesion(kt0[l], len[l], fs[l], dct0[l]);
+            cc0[l] = compressive_cohesion(kc0[l], fs[l], dcc0[l]);
+          }
+      }
+    alignas(64) std::uint64_t going[W];
+    std::uint64_t             any_going = 0;
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        for (unsigned int i = 0; i < 3; ++i)
+          s_trial[i][l] = active[l] != 0 ? sp[i][l] : 0.;
+        const double s0 = s_trial[0][l], s1 = s_trial[1][l], s2 = s_trial[2][l];
+        mean_tr[l]      = (s0 + s1 + s2) / 3.;
+        s_tr[0][l]      = s0 - mean_tr[l];
+        s_tr[1][l]      = s1 - mean_tr[l];
+        s_tr[2][l]      = s2 - mean_tr[l];
+        q_tr[l]         = std::sqrt(
+          1.5 * (s_tr[0][l] * s_tr[0][l] + s_tr[1][l] * s_tr[1][l] + s_tr[2][l] * s_tr[2][l]));
+        F0[l]    = yield_function(q_tr[l], mean_tr[l], s0, tdif[l] * ct0[l], cdif[l] * cc0[l]);
+        going[l] = (active[l] != 0) & (F0[l] > tol) ? 1 : 0;
+        returned[l] = going[l];
+      }
+    for (unsigned int l = 0; l < W; ++l)
+      any_going |= going[l];
+    if (any_going == 0)
+      return;
+    for (unsigned int l = 0; l < W; ++l)
+      lubliner_returns += going[l];
 
     // The state after plastic multiplier dl: q by Newton on
     // g(q) = q (1 + 3 G dl / sqrt(a^2 + q^2)) - q_tr = 0. g is increasing
@@ -666,77 +741,142 @@ namespace anvil::MaterialModel
     // cohesions at the rate's factors), and through the tension weight r
     // (dr from the principal values' rates). Where the flow or a curve has
     // a kink, the iteration below keeps a bracket.
-    struct State
-    {
-      double q, mean, s[3], kt, kc, F, dF;
-    };
+    //
     // (Reciprocals of what a return holds fixed, so that an evaluation
     // divides as little as it can: its divisions and roots are a chain.)
-    const double inv_q_tr = q_tr > 0 ? 1. / q_tr : 0.;
-    const double per_q[3] = {s_tr[0] * inv_q_tr, s_tr[1] * inv_q_tr, s_tr[2] * inv_q_tr};
+    alignas(64) double inv_q_tr[W], per_q[3][W];
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        inv_q_tr[l] = q_tr[l] > 0 ? 1. / q_tr[l] : 0.;
+        for (unsigned int i = 0; i < 3; ++i)
+          per_q[i][l] = s_tr[i][l] * inv_q_tr[l];
+      }
     const double inv_1_alpha = 1. / (1. - alpha), dmean = -K * tan_psi;
-    auto slope = [&](const double q, const double iQ, const double dg, const double (&st)[3],
-                     const double r, const double rate1, const double rate3, const double dl,
-                     const double ct, const double cc, const double dct, const double dcc) {
-      const double Ct = tdif * ct, Cc = cdif * cc, iCt = 1. / Ct;
+    // dF/d(dl) of lane l at the state (q, s) with the derivatives above.
+    const auto slope = [&](const unsigned int l, const double q, const double iQ,
+                           const double dg, const double s0, const double s1, const double s2,
+                           const double r, const double rate1, const double rate3,
+                           const double dl, const double ct, const double cc, const double dct,
+                           const double dcc) {
+      const double Ct = tdif[l] * ct, Cc = cdif[l] * cc, iCt = 1. / Ct;
       const double dq = q > 0 ? -3. * mu * q * iQ / dg : 0.;
-      double       ds[3], dnum = 0, dden = 0, den = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        {
-          ds[i] = dmean + per_q[i] * dq;
-          dnum += st[i] > 0 ? ds[i] : 0.;
-          dden += st[i] > 0 ? ds[i] : -ds[i];
-          den += std::abs(st[i]);
-        }
+      // (Written out for the three principal values: a local array would
+      // keep the loop over the lanes from vectorising.)
+      const double ds0 = dmean + per_q[0][l] * dq, ds1 = dmean + per_q[1][l] * dq,
+                   ds2  = dmean + per_q[2][l] * dq;
+      const double dnum = ((s0 > 0 ? ds0 : 0.) + (s1 > 0 ? ds1 : 0.)) + (s2 > 0 ? ds2 : 0.);
+      const double dden = ((s0 > 0 ? ds0 : -ds0) + (s1 > 0 ? ds1 : -ds1)) + (s2 > 0 ? ds2 : -ds2);
+      const double den  = (std::abs(s0) + std::abs(s1)) + std::abs(s2);
       const double dr       = den > 0 ? (dnum - r * dden) / den : 0.;
       const double beta     = Cc * iCt * (1. - alpha) - (1. + alpha);
-      const double positive = std::max(st[0], 0.);
+      const double positive = std::max(s0, 0.);
       // (de_1 = dl rate1, de_3 = dl rate3.)
       const double dkt = rate1 > 0 ? (r + dr * dl) * rate1 : 0.;
       const double dkc = rate3 < 0 ? -(1. - r - dr * dl) * rate3 : 0.;
-      return (dq + 3. * alpha * dmean + (st[0] > 0 ? beta : gamma) * ds[0]) * inv_1_alpha -
-             Cc * positive * (iCt * iCt) * tdif * dct * dkt + (positive * iCt - 1.) * cdif * dcc * dkc;
+      return (dq + 3. * alpha * dmean + (s0 > 0 ? beta : gamma) * ds0) * inv_1_alpha -
+             Cc * positive * (iCt * iCt) * tdif[l] * dct * dkt +
+             (positive * iCt - 1.) * cdif[l] * dcc * dkc;
     };
-    auto evaluate = [&](const double dl) {
-      ++lubliner_evaluations;
-      State        st;
-      const double c3 = 3. * mu * dl;
-      double       q  = std::max(q_tr - c3, 0.);
-      double       dg = 1.;
+    // r = sum <s_i> / sum |s_i| (0 at zero stress).
+    const auto weight = [](const double s0, const double s1, const double s2) {
+      const double num = std::max(s0, 0.) + std::max(s1, 0.) + std::max(s2, 0.);
+      const double den = std::abs(s0) + std::abs(s1) + std::abs(s2);
+      return den > 0 ? num / den : 0.;
+    };
+
+    // The state of each lane at its current dl: what the iteration reads
+    // (F, dF) and what the return keeps (q, mean, s, kappas).
+    alignas(64) double q[W], mean[W], s[3][W], kt[W], kc[W], F[W], dF[W], dl[W];
+    const auto evaluate = [&]() {
+      for (unsigned int l = 0; l < W; ++l)
+        lubliner_evaluations += going[l];
+      alignas(64) double c3[W], qn[W], dg[W];
+      alignas(64) std::uint64_t newton[W];
+      std::uint64_t             any_newton = 0;
       // (With a = 0 and q = 0 the return reached the apex: q stays 0.)
-      for (unsigned int it = 0; it < 50 && q_tr > 0 && (q > 0 || a2 > 0); ++it)
+      for (unsigned int l = 0; l < W; ++l)
         {
-          const double iQ = 1. / std::sqrt(a2 + q * q);
-          const double g  = q * (1. + c3 * iQ) - q_tr;
-          dg              = 1. + c3 * a2 * (iQ * iQ * iQ);
-          const double dq = g / dg;
-          q               = std::max(q - dq, 0.);
-          // Converged when the step is at round-off, or when the next
-          // one would be: Newton's error after a step of dq is about
-          // |g'' / (2 g')| dq^2 <= 1.5 c3 a^2 / Q^4 dq^2 (g' >= 1).
-          if (std::abs(dq) <= 1e-15 * q_tr ||
-              1.5 * c3 * a2 * dq * dq * (iQ * iQ) * (iQ * iQ) <= 1e-15 * q_tr)
-            break;
+          c3[l]     = 3. * mu * dl[l];
+          qn[l]     = std::max(q_tr[l] - c3[l], 0.);
+          dg[l]     = 1.;
+          newton[l] = (going[l] != 0) & (q_tr[l] > 0) & ((qn[l] > 0) | (a2 > 0)) ? 1 : 0;
+          any_newton |= newton[l];
         }
-      const double scale = q * inv_q_tr;
-      st.q               = q;
-      st.mean            = mean_tr + dmean * dl;
-      for (unsigned int i = 0; i < 3; ++i)
-        st.s[i] = st.mean + scale * s_tr[i];
-      const double iQ    = 1. / std::sqrt(a2 + q * q);
-      const double rate1 = 1.5 * scale * s_tr[0] * iQ + tan_psi / 3.;
-      const double rate3 = 1.5 * scale * s_tr[2] * iQ + tan_psi / 3.;
-      const double de1   = dl * rate1;
-      const double de3   = dl * rate3;
-      const double r     = tension_weight(st.s);
-      st.kt              = kt0 + r * std::max(de1, 0.);
-      st.kc              = kc0 + (1. - r) * std::max(-de3, 0.);
-      double       dct = dct0, dcc = dcc0;
-      const double ct = st.kt != kt0 ? tensile_cohesion(st.kt, len, f, dct) : ct0;
-      const double cc = st.kc != kc0 ? compressive_cohesion(st.kc, f, dcc) : cc0;
-      st.F  = yield_function(q, st.mean, st.s[0], tdif * ct, cdif * cc);
-      st.dF = slope(q, iQ, dg, st.s, r, rate1, rate3, dl, ct, cc, dct, dcc);
-      return st;
+      for (unsigned int it = 0; it < 50 && any_newton != 0; ++it)
+        {
+          any_newton = 0;
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double iQ   = 1. / std::sqrt(a2 + qn[l] * qn[l]);
+              const double g    = qn[l] * (1. + c3[l] * iQ) - q_tr[l];
+              const double dgn  = 1. + c3[l] * a2 * (iQ * iQ * iQ);
+              const double dq   = g / dgn;
+              const double next = std::max(qn[l] - dq, 0.);
+              // Converged when the step is at round-off, or when the next
+              // one would be: Newton's error after a step of dq is about
+              // |g'' / (2 g')| dq^2 <= 1.5 c3 a^2 / Q^4 dq^2 (g' >= 1).
+              const bool converged = (std::abs(dq) <= 1e-15 * q_tr[l]) |
+                                     (1.5 * c3[l] * a2 * dq * dq * (iQ * iQ) * (iQ * iQ) <=
+                                      1e-15 * q_tr[l]);
+              const bool on = newton[l] != 0;
+              qn[l]         = on ? next : qn[l];
+              dg[l]         = on ? dgn : dg[l];
+              newton[l]     = on & !converged & ((next > 0) | (a2 > 0)) ? 1 : 0;
+              any_newton |= newton[l];
+            }
+        }
+      alignas(64) double mn[W], xn[3][W], iQ[W], rate1[W], rate3[W], r[W], ktn[W], kcn[W];
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          const double scale = qn[l] * inv_q_tr[l];
+          mn[l]              = mean_tr[l] + dmean * dl[l];
+          for (unsigned int i = 0; i < 3; ++i)
+            xn[i][l] = mn[l] + scale * s_tr[i][l];
+          iQ[l]            = 1. / std::sqrt(a2 + qn[l] * qn[l]);
+          rate1[l]         = 1.5 * scale * s_tr[0][l] * iQ[l] + tan_psi / 3.;
+          rate3[l]         = 1.5 * scale * s_tr[2][l] * iQ[l] + tan_psi / 3.;
+          const double de1 = dl[l] * rate1[l];
+          const double de3 = dl[l] * rate3[l];
+          r[l]             = weight(xn[0][l], xn[1][l], xn[2][l]);
+          ktn[l]           = kt0[l] + r[l] * std::max(de1, 0.);
+          kcn[l]           = kc0[l] + (1. - r[l]) * std::max(-de3, 0.);
+        }
+      // The cohesions where a hardening variable moved (a variable that
+      // did not move keeps its cohesion: no curve lookup).
+      alignas(64) double ct[W], cc[W], dct[W], dcc[W];
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          ct[l]  = ct0[l];
+          cc[l]  = cc0[l];
+          dct[l] = dct0[l];
+          dcc[l] = dcc0[l];
+          if (going[l] != 0)
+            {
+              if (ktn[l] != kt0[l])
+                ct[l] = tensile_cohesion(ktn[l], len[l], fs[l], dct[l]);
+              if (kcn[l] != kc0[l])
+                cc[l] = compressive_cohesion(kcn[l], fs[l], dcc[l]);
+            }
+        }
+      alignas(64) double Fn[W], dFn[W];
+      for (unsigned int l = 0; l < W; ++l)
+        Fn[l] = yield_function(qn[l], mn[l], xn[0][l], tdif[l] * ct[l], cdif[l] * cc[l]);
+      for (unsigned int l = 0; l < W; ++l)
+        dFn[l] = slope(l, qn[l], iQ[l], dg[l], xn[0][l], xn[1][l], xn[2][l], r[l], rate1[l],
+                       rate3[l], dl[l], ct[l], cc[l], dct[l], dcc[l]);
+      // (A lane that has stopped keeps the state it evaluated last.)
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          const bool on = going[l] != 0;
+          q[l]          = on ? qn[l] : q[l];
+          mean[l]       = on ? mn[l] : mean[l];
+          for (unsigned int i = 0; i < 3; ++i)
+            s[i][l] = on ? xn[i][l] : s[i][l];
+          kt[l] = on ? ktn[l] : kt[l];
+          kc[l] = on ? kcn[l] : kc[l];
+          F[l]  = on ? Fn[l] : F[l];
+          dF[l] = on ? dFn[l] : dF[l];
+        }
     };
 
     // Newton on F(dl) = 0 from dl = 0 (F0 > 0), its first step with the
@@ -747,69 +887,95 @@ namespace anvil::MaterialModel
     // end twice; no upper end yet, the step is doubled instead. F falls
     // with dl where the return exists (the cohesions soften slower than
     // the stress relaxes), so the bracket closes.
-    double dl;
-    {
-      const double iQ    = 1. / std::sqrt(a2 + q_tr * q_tr);
-      const double rate1 = 1.5 * s_tr[0] * iQ + tan_psi / 3.;
-      const double rate3 = 1.5 * s_tr[2] * iQ + tan_psi / 3.;
-      const double dF0 =
-        slope(q_tr, iQ, 1., sp, tension_weight(sp), rate1, rate3, 0., ct0, cc0, dct0, dcc0);
-      // (Without a falling slope: the step of the cohesions held fixed.)
-      const double beta0    = cdif * cc0 / (tdif * ct0) * (1. - alpha) - (1. + alpha);
-      const double s_weight = sp[0] > 0 ? beta0 : gamma;
-      const double ds_max   = K * tan_psi + 3. * mu * per_q[0];
-      const double fixed =
-        (3. * mu + 3. * alpha * K * tan_psi + std::max(s_weight, 0.) * ds_max) / (1. - alpha);
-      dl = dF0 < 0 ? F0 / -dF0 : F0 / fixed;
-    }
-    double lo = 0, Flo = F0, hi = 0, Fhi = 0;
-    bool   bracketed = false;
-    int    kept      = 0; // which end the last secant step kept: 1 lo, -1 hi
-    State  st;
-    for (unsigned int it = 0; it < 200; ++it)
+    alignas(64) double lo[W], Flo[W], hi[W], Fhi[W], bracketed[W], kept[W];
+    for (unsigned int l = 0; l < W; ++l)
       {
-        st = evaluate(dl);
-        if (std::abs(st.F) <= tol)
-          break;
-        if (st.F > 0)
+        const double s0 = s_trial[0][l], s1 = s_trial[1][l], s2 = s_trial[2][l];
+        const double iQ    = 1. / std::sqrt(a2 + q_tr[l] * q_tr[l]);
+        const double rate1 = 1.5 * s_tr[0][l] * iQ + tan_psi / 3.;
+        const double rate3 = 1.5 * s_tr[2][l] * iQ + tan_psi / 3.;
+        const double dF0   = slope(l, q_tr[l], iQ, 1., s0, s1, s2, weight(s0, s1, s2), rate1,
+                                 rate3, 0., ct0[l], cc0[l], dct0[l], dcc0[l]);
+        // (Without a falling slope: the step of the cohesions held fixed.)
+        const double beta0 =
+          cdif[l] * cc0[l] / (tdif[l] * ct0[l]) * (1. - alpha) - (1. + alpha);
+        const double s_weight = s0 > 0 ? beta0 : gamma;
+        const double ds_max   = K * tan_psi + 3. * mu * per_q[0][l];
+        const double fixed =
+          (3. * mu + 3. * alpha * K * tan_psi + std::max(s_weight, 0.) * ds_max) / (1. - alpha);
+        dl[l]        = dF0 < 0 ? F0[l] / -dF0 : F0[l] / fixed;
+        lo[l]        = 0;
+        Flo[l]       = F0[l];
+        hi[l]        = 0;
+        Fhi[l]       = 0;
+        bracketed[l] = 0;
+        kept[l]      = 0; // which end the last secant step kept: 1 lo, -1 hi
+      }
+    for (unsigned int it = 0; it < 200 && any_going != 0; ++it)
+      {
+        evaluate();
+        // The scalar iteration's steps, each a select: stop when F is at
+        // the tolerance, when the bracket has closed, or when Newton's
+        // step is below round-off of dl. (The conditions are products of
+        // 0 and 1, and the new bracket is compared in a loop of its own:
+        // the compiler vectorises neither a select of conditions nor a
+        // condition on a value selected in the same loop.)
+        alignas(64) double on[W];
+        for (unsigned int l = 0; l < W; ++l)
           {
-            lo  = dl;
-            Flo = st.F;
+            on[l] = (going[l] != 0 ? 1. : 0.) * (std::abs(F[l]) <= tol ? 0. : 1.);
+            const double up = on[l] * (F[l] > 0 ? 1. : 0.), down = on[l] - up;
+            lo[l]           = up != 0. ? dl[l] : lo[l];
+            Flo[l]          = up != 0. ? F[l] : Flo[l];
+            hi[l]           = down != 0. ? dl[l] : hi[l];
+            Fhi[l]          = down != 0. ? F[l] : Fhi[l];
+            bracketed[l]    = down != 0. ? 1. : bracketed[l];
           }
-        else
+        for (unsigned int l = 0; l < W; ++l)
           {
-            hi        = dl;
-            Fhi       = st.F;
-            bracketed = true;
+            const double br     = bracketed[l];
+            const double closed = br * (hi[l] - lo[l] <= 1e-15 * hi[l] ? 1. : 0.);
+            // (newton = -1 where the slope does not fall: below lo, hi and
+            // dl, which are never negative.)
+            const double falls  = dF[l] < 0 ? 1. : 0.;
+            const double newton = dF[l] < 0 ? dl[l] - F[l] / dF[l] : -1.;
+            const double inside =
+              br * falls * (newton > lo[l] ? 1. : 0.) * (newton < hi[l] ? 1. : 0.);
+            const double end  = F[l] > 0 ? -1. : 1.;
+            const double same = end == kept[l] ? 1. : 0.;
+            const double next =
+              br == 0.     ? (newton > dl[l] ? newton : 2. * dl[l]) :
+              inside != 0. ? newton :
+              same != 0.   ? 0.5 * (lo[l] + hi[l]) :
+                             (lo[l] * Fhi[l] - hi[l] * Flo[l]) / (Fhi[l] - Flo[l]);
+            const double next_kept =
+              br == 0. ? kept[l] : inside + same != 0. ? 0. : end;
+            const double step =
+              on[l] * (1. - closed) * (1. - inside * (newton == dl[l] ? 1. : 0.));
+            dl[l]    = step != 0. ? next : dl[l];
+            kept[l]  = step != 0. ? next_kept : kept[l];
+            going[l] = step != 0. ? 1 : 0;
           }
-        if (bracketed && hi - lo <= 1e-15 * hi)
-          break;
-        const double newton = st.dF < 0 ? dl - st.F / st.dF : -1.;
-        if (!bracketed)
-          dl = newton > dl ? newton : 2. * dl;
-        else if (newton > lo && newton < hi)
-          {
-            if (newton == dl) // (a step below round-off of dl)
-              break;
-            dl   = newton;
-            kept = 0;
-          }
-        else
-          {
-            const int end = st.F > 0 ? -1 : 1;
-            dl            = end == kept ? 0.5 * (lo + hi) : (lo * Fhi - hi * Flo) / (Fhi - Flo);
-            kept          = end == kept ? 0 : end;
-          }
+        any_going = 0;
+        for (unsigned int l = 0; l < W; ++l)
+          any_going |= going[l];
       }
 
-    const double scale = q_tr > 0 ? st.q / q_tr : 0.;
-    const double m_old = (sbar[0] + sbar[1] + sbar[2]) / 3.;
-    for (unsigned int k = 0; k < 6; ++k)
-      sbar[k] = (k < 3 ? st.mean + scale * (sbar[k] - m_old) : scale * sbar[k]);
-    h[i_kappa_t] = st.kt;
-    h[i_kappa_c] = st.kc;
-    std::copy(st.s, st.s + 3, sp);
-    return true;
+    // The returned lanes' effective stresses: the deviator scaled, the
+    // mean stress shifted; their hardening variables.
+    for (unsigned int l = 0; l < W; ++l)
+      if (returned[l] != 0)
+        {
+          double      *sb    = sbar[l];
+          const double scale = q_tr[l] > 0 ? q[l] / q_tr[l] : 0.;
+          const double m_old = (sb[0] + sb[1] + sb[2]) / 3.;
+          for (unsigned int k = 0; k < 6; ++k)
+            sb[k] = (k < 3 ? mean[l] + scale * (sb[k] - m_old) : scale * sb[k]);
+          h[l][i_kappa_t] = kt[l];
+          h[l][i_kappa_c] = kc[l];
+          for (unsigned int i = 0; i < 3; ++i)
+            sp[i][l] = s[i][l];
+        }
   }
 
 
@@ -885,11 +1051,31 @@ namespace anvil::MaterialModel
                                                    double       *stress,
                                                    double       *h) const
   {
-    const bool   viscous = par.viscosity > 0 && dt > 0;
-    double      *sref    = h + (viscous ? i_viscous_stress : i_effective_stress);
-    double      *sbar    = h + i_effective_stress;
-    double       principal[3];
-    return_map(sbar, h, cdif, tdif, principal);
+    double *sbar = h + i_effective_stress;
+    double  principal[3];
+    principal_values(sbar, principal);
+    const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
+    inelastic_update(D, dt, dsig, old_stress, stored_old, cdif, tdif, lubliner, principal, stress,
+                     h);
+  }
+
+
+  void ConcreteDamagedPlasticity::inelastic_update(const double *D,
+                                                   const double  dt,
+                                                   const double *dsig,
+                                                   const double *old_stress,
+                                                   const double  stored_old,
+                                                   const double  cdif,
+                                                   const double  tdif,
+                                                   const bool    lubliner,
+                                                   double (&principal)[3],
+                                                   double       *stress,
+                                                   double       *h) const
+  {
+    const bool viscous = par.viscosity > 0 && dt > 0;
+    double    *sref    = h + (viscous ? i_viscous_stress : i_effective_stress);
+    double    *sbar    = h + i_effective_stress;
+    complete_return(sbar, h, cdif, tdif, principal, lubliner);
 
     // Damage, the scalar of ABAQUS: 1 - d = (1 - s_t d_c)(1 - s_c d_t).
     double d_t, d_c;
@@ -938,8 +1124,9 @@ namespace anvil::MaterialModel
   // any time (cracked or crushed a little, perhaps, but not yielding in this
   // step). For such a point the update is the elastic trial and the damage
   // combination of the existing d_t and d_c; the batch computes these, the
-  // rate filter and the test across its points, and hands only the others
-  // to the one-point inelastic update.
+  // rate filter and the test across its points. The others return to
+  // Lubliner's surface together, lane by lane (lubliner_return_lanes()),
+  // and finish one at a time (the tension cut-off, damage, dissipation).
   //
   // The test runs in two stages. First at the cohesions without rate
   // effects, kept in the history: the dynamic increase factors are at least
@@ -1161,13 +1348,17 @@ namespace anvil::MaterialModel
                                 per_direction);
           for (unsigned int k = 0; k < 6; ++k)
             nominal[k][l] = mixed ? per_direction[k] : (1. - damage[l]) * sbar[k][l];
+          // (An undamaged point keeps its dissipation, as in an undamaged
+          // batch above: its result does not depend on its batch-mates.)
           double work = 0;
           for (unsigned int k = 0; k < 6; ++k)
             work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
-          dissipation[l] += work -
-                            stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
-                                          nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
-                            stored_old[l];
+          const double dissipated =
+            work -
+            stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
+                          nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
+            stored_old[l];
+          dissipation[l] += (d_t == 0.) & (d_c == 0.) ? 0. : dissipated;
         }
     };
     if (undamaged_batch)
@@ -1202,25 +1393,56 @@ namespace anvil::MaterialModel
             for (unsigned int k = 0; k < 6; ++k)
               s[k][l] = nominal[k][l];
           }
-        else
+      }
+
+    // The others: their histories in one piece, their returns to
+    // Lubliner's surface together, then each point's own update.
+    alignas(64) std::uint64_t outside[W], returned[W];
+    std::uint64_t             any_outside = 0;
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        outside[l] = elastic[l] == 0. ? 1 : 0;
+        any_outside |= outside[l];
+      }
+    if (any_outside == 0)
+      return;
+    double             h[W][max_history];
+    double            *hp[W], *sb[W];
+    alignas(64) double principal[3][W];
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        hp[l] = h[l];
+        sb[l] = h[l] + i_effective_stress;
+        if (!par.rate_effects || outside[l] == 0)
+          cdif[l] = tdif[l] = 1.;
+        if (outside[l] != 0)
           {
-            double d[6], ds[6], old[6], st[6];
-            for (unsigned int k = 0; k < 6; ++k)
-              {
-                d[k]   = D[k][l];
-                ds[k]  = dsig[k][l];
-                old[k] = s[k][l];
-              }
-            // The one-point update on the point's history in one piece.
-            double h[max_history];
-            history.gather(l, h);
-            inelastic_update(d, dt, ds, old, stored_old[l], par.rate_effects ? cdif[l] : 1.,
-                             par.rate_effects ? tdif[l] : 1., st, h);
-            history.scatter(l, h);
-            for (unsigned int k = 0; k < 6; ++k)
-              s[k][l] = st[k];
+            history.gather(l, h[l]);
+            double p[3];
+            principal_values(sb[l], p);
+            for (unsigned int i = 0; i < 3; ++i)
+              principal[i][l] = p[i];
           }
       }
+    lubliner_return_lanes(sb, hp, cdif, tdif, principal, outside, returned);
+    for (unsigned int l = 0; l < W; ++l)
+      if (outside[l] != 0)
+        {
+          double d[6], ds[6], old[6], st[6], p[3];
+          for (unsigned int k = 0; k < 6; ++k)
+            {
+              d[k]   = D[k][l];
+              ds[k]  = dsig[k][l];
+              old[k] = s[k][l];
+            }
+          for (unsigned int i = 0; i < 3; ++i)
+            p[i] = principal[i][l];
+          inelastic_update(d, dt, ds, old, stored_old[l], cdif[l], tdif[l], returned[l] != 0, p,
+                           st, h[l]);
+          history.scatter(l, h[l]);
+          for (unsigned int k = 0; k < 6; ++k)
+            s[k][l] = st[k];
+        }
   }
 
 

@@ -17,7 +17,12 @@
  *   evaluations of F per return over all paths, 400 steps each (2.0
  *   measured; with the stress part of dF/ddlambda scaled by 0.7 on
  *   purpose, 13.7: a wrong derivative makes the iteration linear, or
- *   leaves it to the bracket's secant and bisection).
+ *   leaves it to the bracket's secant and bisection);
+ * - the batched update returns the points of a batch together, lane by
+ *   lane: a point's stress and history do not depend on its lane or on the
+ *   points beside it. The four paths run in one batch twice (lanes 0-3 and,
+ *   reversed, 4-7) and each alone in a batch of points at rest; every
+ *   lane's stress and history must agree bit for bit.
  */
 #include <anvil/kinematics/tensor3.h>
 
@@ -25,6 +30,7 @@
 #include "unit_test.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -112,5 +118,62 @@ int main()
   std::printf("== %lu returns, %.2f evaluations of F each\n", model.n_lubliner_returns() - returns0,
               per_return);
   check_below("evaluations of F per return (Newton on dlambda)", per_return, 3.);
+
+  // The batched update, 400 steps of the four paths (lane l runs path
+  // lanes[l], -1: a point at rest).
+  constexpr unsigned int W = M::batch_size;
+  using Lanes              = std::array<int, W>;
+  auto run_batch           = [&](const Lanes &lanes) {
+    std::vector<std::vector<double>> history(W, anvil::test::fresh_history(model, h));
+    std::vector<std::vector<double>> out(W);
+    const unsigned int n = 400;
+    const double       dt = 1e-6;
+    double D[6][W], spin[3][W] = {}, stress[6][W] = {};
+    for (unsigned int l = 0; l < W; ++l)
+      for (unsigned int k = 0; k < 6; ++k)
+        D[k][l] = lanes[l] < 0 ? 0. : paths[lanes[l]].strain / (n * dt) * paths[lanes[l]].D[k];
+    M::BatchHistory batch;
+    batch.n_hot      = model.n_hot_history(anvil::Formulation::updated_lagrangian);
+    batch.n_cold     = model.n_history(anvil::Formulation::updated_lagrangian) - batch.n_hot;
+    batch.hot_stride = 1;
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        batch.hot[l]  = history[l].data();
+        batch.cold[l] = history[l].data() + batch.n_hot;
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        model.update_cauchy_stress_batch(D, spin, dt, stress, batch);
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            for (unsigned int k = 0; k < 6; ++k)
+              out[l].push_back(stress[k][l]);
+            out[l].insert(out[l].end(), history[l].begin(), history[l].end());
+            // (An undamaged point's effective stress is its stress: the
+            // stored one is valid once the point is damaged, see the
+            // model's history layout.)
+            if (history[l][M::i_tensile_damage] == 0 && history[l][M::i_compressive_damage] == 0)
+              for (unsigned int k = 0; k < 6; ++k)
+                out[l][out[l].size() - history[l].size() + M::i_effective_stress + k] =
+                  stress[k][l];
+          }
+      }
+    return out;
+  };
+  const auto together = run_batch({0, 1, 2, 3, 3, 2, 1, 0});
+  unsigned long differing = 0;
+  for (int path = 0; path < 4; ++path)
+    {
+      Lanes alone;
+      alone.fill(-1);
+      alone[path] = path;
+      const auto single = run_batch(alone);
+      differing += together[path] != single[path];
+      differing += together[path] != together[W - 1 - path];
+    }
+  std::printf("== batched: %zu values of each lane compared, 12 pairs of lanes\n",
+              together[0].size());
+  check_below("batched update: lanes that differ from the same point elsewhere (bit for bit)",
+              double(differing), 0.);
   return anvil::test::finish();
 }

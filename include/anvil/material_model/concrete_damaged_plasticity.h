@@ -11,6 +11,7 @@
 #include <anvil/material_model/rate_form_elastic.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -319,7 +320,8 @@ namespace anvil::MaterialModel
 
     /** The batched update: the elastic trial, the rate filter and the test
         for a point inside its current surfaces across the batch; the
-        others through the one-point inelastic update (see the .cc). */
+        others' returns to Lubliner's surface together, the rest of their
+        update one point at a time (see the .cc). */
     void update_cauchy_stress_batch(const double (&D)[6][batch_size],
                                     const double (&spin)[3][batch_size],
                                     double dt,
@@ -390,16 +392,33 @@ namespace anvil::MaterialModel
     }
 
   private:
-    /** Return the effective stress @p sbar (trial on entry) to the yield
-        surface; advances the hardening variables in @p h. Writes the
-        principal values of the result into @p principal. */
-    void return_map(double *sbar, double *h, double cdif, double tdif,
-                    double (&principal)[3]) const;
-
     /** Return to Lubliner's surface alone; false if the trial was inside.
         @p principal: the principal values of @p sbar, on entry and exit. */
     bool lubliner_return(double *sbar, double *h, double cdif, double tdif,
                          double (&principal)[3]) const;
+
+    /** The same for the points in the lanes of @p active (nonzero) at
+        once, with effective stresses @p sbar, histories @p h and the
+        factors @p cdif, @p tdif of each lane; @p principal as above,
+        lane by lane. @p returned: 1 where a lane's trial was outside.
+        (The one-point form is lane 0 of this; the batched update returns
+        its inelastic points together.) */
+    void lubliner_return_lanes(double *const (&sbar)[batch_size],
+                               double *const (&h)[batch_size],
+                               const double (&cdif)[batch_size],
+                               const double (&tdif)[batch_size],
+                               double (&principal)[3][batch_size],
+                               const std::uint64_t (&active)[batch_size],
+                               std::uint64_t (&returned)[batch_size]) const;
+
+    /** The return of the effective stress @p sbar to the yield surface
+        after the first return to Lubliner's surface (@p lubliner: whether
+        it returned): the tension cut-off, and the two surfaces in turn
+        where one leaves the other violated. Advances the hardening
+        variables in @p h; @p principal: the principal values of @p sbar,
+        on entry and exit. */
+    void complete_return(double *sbar, double *h, double cdif, double tdif,
+                         double (&principal)[3], bool lubliner) const;
 
     /** Return to the tension cut-off max sigma_bar_i <= c_t alone; false
         if the trial was inside. @p principal as above. */
@@ -489,6 +508,14 @@ namespace anvil::MaterialModel
     void inelastic_update(const double *D, double dt, const double *dsig,
                           const double *old_stress, double stored_old,
                           double cdif, double tdif, double *stress, double *h) const;
+
+    /** The same after the first return to Lubliner's surface (made by
+        the caller; @p lubliner: whether it returned, @p principal: the
+        principal effective stresses after it). */
+    void inelastic_update(const double *D, double dt, const double *dsig,
+                          const double *old_stress, double stored_old,
+                          double cdif, double tdif, bool lubliner,
+                          double (&principal)[3], double *stress, double *h) const;
 
     Parameters par;
     mutable unsigned long lubliner_returns = 0, lubliner_evaluations = 0;
