@@ -1222,6 +1222,15 @@ namespace anvil::MaterialModel
           sbar_old[k][l] = s[k][l];
     else
       {
+        // (A damaged batch's neighbour is most likely damaged too: its
+        // history, which follows this batch's where the batch is stored in
+        // order, is fetched while this one is updated.)
+        if (history.hot_batch != nullptr)
+          {
+            const char *next = reinterpret_cast<const char *>(cold[W - 1] + history.n_cold);
+            for (unsigned int b = 0; b < W * history.n_cold * sizeof(double); b += 64)
+              __builtin_prefetch(next + b);
+          }
         for (unsigned int l = 0; l < W; ++l)
           for (unsigned int k = 0; k < 6; ++k)
             sbar_old[k][l] = cold[l][i_effective_stress - n_hot + k];
@@ -1307,15 +1316,18 @@ namespace anvil::MaterialModel
                                     sbar_old[0][l], sbar_old[1][l], sbar_old[2][l],
                                     sbar_old[3][l], sbar_old[4][l], sbar_old[5][l]);
 
+    // The trial's largest and smallest principal values, across the lanes
+    // (a loop of their own, which vectorises).
+    alignas(64) double trial_s1[W], trial_s3[W];
+    for (unsigned int l = 0; l < W; ++l)
+      Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
+                                           sbar[4][l], sbar[5][l], trial_s1[l], trial_s3[l]);
     auto trial = [&](auto undamaged_tag) {
       constexpr bool undamaged = decltype(undamaged_tag)::value;
       for (unsigned int l = 0; l < W; ++l)
         {
-          // The trial's principal values and the two surfaces at the static
-          // cohesions.
-          double s1, s3;
-          Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
-                                               sbar[4][l], sbar[5][l], s1, s3);
+          // The two surfaces at the static cohesions.
+          const double s1 = trial_s1[l], s3 = trial_s3[l];
           const double mean = mean_stress[l], q = von_mises[l];
           const double s2   = 3. * mean - s1 - s3;
           // Inside at the static cohesions (first stage; see above), with a

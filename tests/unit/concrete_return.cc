@@ -160,7 +160,7 @@ int main()
       }
     return out;
   };
-  const auto together = run_batch({0, 1, 2, 3, 3, 2, 1, 0});
+  const auto together = run_batch(Lanes{{0, 1, 2, 3, 3, 2, 1, 0}});
   unsigned long differing = 0;
   for (int path = 0; path < 4; ++path)
     {
