@@ -1291,6 +1291,26 @@ namespace anvil::Element
             }
         if (first_live < 0)
           continue;
+        // The next batch's element data, fetched while this one is
+        // computed: the hardware's prefetchers follow a few of the loop's
+        // streams only (doc/performance.md).
+        if (e0 + W < n_el)
+          {
+            const auto fetch = [](const auto *begin, const std::size_t bytes) {
+              const char *p = reinterpret_cast<const char *>(begin);
+              for (std::size_t b = 0; b < bytes; b += 64)
+                __builtin_prefetch(p + b);
+            };
+            const std::size_t next = e0 + W;
+            fetch(nodes.data() + 8 * next, 8 * W * sizeof(unsigned int));
+            fetch(stresses.data() + 6 * next, 6 * W * sizeof(double));
+            if constexpr (H != HourglassType::none)
+              fetch(hourglass_resistance.data() + hourglass_entry(next, 0), 12 * W * sizeof(double));
+            // (Of the history only the hot values, which every step reads;
+            // a material that reads the rest fetches it itself.)
+            if (n_hist)
+              fetch(history.data() + hot_entry(next, 0), n_hot * W * sizeof(double));
+          }
         unsigned int last_live = first_live;
         for (unsigned int l = 0; l < W; ++l)
           {
