@@ -1296,20 +1296,22 @@ namespace anvil::Element
         // streams only (doc/performance.md).
         if (e0 + W < n_el)
           {
-            const auto fetch = [](const auto *begin, const std::size_t bytes) {
-              const char *p = reinterpret_cast<const char *>(begin);
+            // (Entries [first, first + count) of an array, within it.)
+            const auto fetch = [](const auto &array, const std::size_t first, const std::size_t count) {
+              const char *p     = reinterpret_cast<const char *>(array.data() + first);
+              const auto  bytes = std::min(count, array.size() - first) * sizeof(array[0]);
               for (std::size_t b = 0; b < bytes; b += 64)
                 __builtin_prefetch(p + b);
             };
             const std::size_t next = e0 + W;
-            fetch(nodes.data() + 8 * next, 8 * W * sizeof(unsigned int));
-            fetch(stresses.data() + 6 * next, 6 * W * sizeof(double));
+            fetch(nodes, 8 * next, 8 * W);
+            fetch(stresses, 6 * next, 6 * W);
             if constexpr (H != HourglassType::none)
-              fetch(hourglass_resistance.data() + hourglass_entry(next, 0), 12 * W * sizeof(double));
+              fetch(hourglass_resistance, hourglass_entry(next, 0), 12 * W);
             // (Of the history only the hot values, which every step reads;
             // a material that reads the rest fetches it itself.)
             if (n_hist)
-              fetch(history.data() + hot_entry(next, 0), n_hot * W * sizeof(double));
+              fetch(history, hot_entry(next, 0), n_hot * W);
           }
         unsigned int last_live = first_live;
         for (unsigned int l = 0; l < W; ++l)

@@ -1224,12 +1224,15 @@ namespace anvil::MaterialModel
       {
         // (A damaged batch's neighbour is most likely damaged too: its
         // history, which follows this batch's where the batch is stored in
-        // order, is fetched while this one is updated.)
+        // order, is fetched while this one is updated. The addresses as
+        // integers: past the last batch they lie beyond the array, where a
+        // prefetch is harmless but a pointer may not point.)
         if (history.hot_batch != nullptr)
           {
-            const char *next = reinterpret_cast<const char *>(cold[W - 1] + history.n_cold);
-            for (unsigned int b = 0; b < W * history.n_cold * sizeof(double); b += 64)
-              __builtin_prefetch(next + b);
+            const std::uintptr_t next =
+              reinterpret_cast<std::uintptr_t>(cold[W - 1]) + history.n_cold * sizeof(double);
+            for (std::uintptr_t b = 0; b < W * history.n_cold * sizeof(double); b += 64)
+              __builtin_prefetch(reinterpret_cast<const void *>(next + b));
           }
         for (unsigned int l = 0; l < W; ++l)
           for (unsigned int k = 0; k < 6; ++k)
