@@ -785,8 +785,10 @@ namespace anvil::MaterialModel
     };
 
     // The state of each lane at its current dl: what the iteration reads
-    // (F, dF) and what the return keeps (q, mean, s, kappas).
-    alignas(64) double q[W], mean[W], s[3][W], kt[W], kc[W], F[W], dF[W], dl[W];
+    // (F, dF) and what the return keeps (q, mean, s, kappas); zero in a
+    // lane that never goes.
+    alignas(64) double q[W] = {}, mean[W] = {}, s[3][W] = {}, kt[W] = {}, kc[W] = {}, F[W] = {},
+                       dF[W] = {}, dl[W];
     const auto evaluate = [&]() {
       for (unsigned int l = 0; l < W; ++l)
         lubliner_evaluations += going[l];
