@@ -496,15 +496,6 @@ namespace anvil::MaterialModel
   }
 
 
-  // r = sum <s_i> / sum |s_i| of principal values s (0 at zero stress).
-  double ConcreteDamagedPlasticity::tension_weight(const double (&s)[3])
-  {
-    const double num = std::max(s[0], 0.) + std::max(s[1], 0.) + std::max(s[2], 0.);
-    const double den = std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]);
-    return den > 0 ? num / den : 0.;
-  }
-
-
   // @sect3{The return mapping}
   //
   // Two surfaces: Lubliner's F and the tension cut-off max sigma_bar_i <=
@@ -777,12 +768,6 @@ namespace anvil::MaterialModel
              Cc * positive * (iCt * iCt) * tdif[l] * dct * dkt +
              (positive * iCt - 1.) * cdif[l] * dcc * dkc;
     };
-    // r = sum <s_i> / sum |s_i| (0 at zero stress).
-    const auto weight = [](const double s0, const double s1, const double s2) {
-      const double num = std::max(s0, 0.) + std::max(s1, 0.) + std::max(s2, 0.);
-      const double den = std::abs(s0) + std::abs(s1) + std::abs(s2);
-      return den > 0 ? num / den : 0.;
-    };
 
     // The state of each lane at its current dl: what the iteration reads
     // (F, dF) and what the return keeps (q, mean, s, kappas); zero in a
@@ -839,7 +824,7 @@ namespace anvil::MaterialModel
           rate3[l]         = 1.5 * scale * s_tr[2][l] * iQ[l] + tan_psi / 3.;
           const double de1 = dl[l] * rate1[l];
           const double de3 = dl[l] * rate3[l];
-          r[l]             = weight(xn[0][l], xn[1][l], xn[2][l]);
+          r[l]             = tension_weight(xn[0][l], xn[1][l], xn[2][l]);
           ktn[l]           = kt0[l] + r[l] * std::max(de1, 0.);
           kcn[l]           = kc0[l] + (1. - r[l]) * std::max(-de3, 0.);
         }
@@ -896,7 +881,7 @@ namespace anvil::MaterialModel
         const double iQ    = 1. / std::sqrt(a2 + q_tr[l] * q_tr[l]);
         const double rate1 = 1.5 * s_tr[0][l] * iQ + tan_psi / 3.;
         const double rate3 = 1.5 * s_tr[2][l] * iQ + tan_psi / 3.;
-        const double dF0   = slope(l, q_tr[l], iQ, 1., s0, s1, s2, weight(s0, s1, s2), rate1,
+        const double dF0   = slope(l, q_tr[l], iQ, 1., s0, s1, s2, tension_weight(s0, s1, s2), rate1,
                                  rate3, 0., ct0[l], cc0[l], dct0[l], dcc0[l]);
         // (Without a falling slope: the step of the cohesions held fixed.)
         const double beta0 =
@@ -1020,10 +1005,14 @@ namespace anvil::MaterialModel
         h[i_rate] = filtered_rate(h[i_rate], std::max(std::abs(largest), std::abs(smallest)),
                                   rate_filter_weight(dt));
       }
-    const bool rate = par.rate_effects && dt > 0;
-    inelastic_update(D, dt, dsig, old_stress, stored_old,
-                     rate ? ConcreteDIF::compressive(h[i_rate], par.cube_strength) : 1.,
-                     rate ? ConcreteDIF::tensile(h[i_rate], par.dif_strength) : 1., stress, h);
+    const bool   rate = par.rate_effects && dt > 0;
+    const double cdif = rate ? ConcreteDIF::compressive(h[i_rate], par.cube_strength) : 1.;
+    const double tdif = rate ? ConcreteDIF::tensile(h[i_rate], par.dif_strength) : 1.;
+    double       principal[3];
+    principal_values(sbar, principal);
+    const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
+    inelastic_update(D, dt, dsig, old_stress, stored_old, cdif, tdif, lubliner, principal, stress,
+                     h);
   }
 
 
@@ -1040,28 +1029,10 @@ namespace anvil::MaterialModel
   }
 
 
-  // Everything after the elastic trial (in h's effective stress): the
-  // return to the surfaces at the dynamic cohesions, damage, the nominal
+  // Everything after the first return to Lubliner's surface (the
+  // caller's: the one-point update's own, the batch's across its lanes):
+  // the rest of the return at the dynamic cohesions, damage, the nominal
   // stress and the dissipation.
-  void ConcreteDamagedPlasticity::inelastic_update(const double *D,
-                                                   const double  dt,
-                                                   const double *dsig,
-                                                   const double *old_stress,
-                                                   const double  stored_old,
-                                                   const double  cdif,
-                                                   const double  tdif,
-                                                   double       *stress,
-                                                   double       *h) const
-  {
-    double *sbar = h + i_effective_stress;
-    double  principal[3];
-    principal_values(sbar, principal);
-    const bool lubliner = lubliner_return(sbar, h, cdif, tdif, principal);
-    inelastic_update(D, dt, dsig, old_stress, stored_old, cdif, tdif, lubliner, principal, stress,
-                     h);
-  }
-
-
   void ConcreteDamagedPlasticity::inelastic_update(const double *D,
                                                    const double  dt,
                                                    const double *dsig,
@@ -1098,7 +1069,7 @@ namespace anvil::MaterialModel
     auto intact = [&](const double r) { return intact_fraction(r, d_t, d_c); };
     h[i_tensile_damage]     = d_t;
     h[i_compressive_damage] = d_c;
-    h[i_damage]             = 1. - intact(tension_weight(principal));
+    h[i_damage]             = 1. - intact(tension_weight(principal[0], principal[1], principal[2]));
     if (principal[0] > 0 && principal[2] < 0 && (d_t > 0 || d_c > 0))
       {
         // Principal stresses of both signs: the combination per principal
@@ -1352,9 +1323,7 @@ namespace anvil::MaterialModel
 
           // Damage of the existing d_t, d_c at the trial: tension weight r.
           const double d_t = hv[4][l], d_c = hv[5][l];
-          const double num = std::max(s1, 0.) + std::max(s2, 0.) + std::max(s3, 0.);
-          const double den = std::abs(s1) + std::abs(s2) + std::abs(s3);
-          const double r   = den > 0 ? num / den : 0.;
+          const double r   = tension_weight(s1, s2, s3);
           auto intact = [&](const double w) { return intact_fraction(w, d_t, d_c); };
           damage[l]           = 1. - intact(r);
           const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));

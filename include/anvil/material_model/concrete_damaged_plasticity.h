@@ -11,6 +11,7 @@
 #include <anvil/material_model/rate_form_elastic.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -424,8 +425,15 @@ namespace anvil::MaterialModel
         if the trial was inside. @p principal as above. */
     bool tension_cutoff(double *sbar, double *h, double tdif, double (&principal)[3]) const;
 
-    /** The weight r = sum <s_i> / sum |s_i| of principal values @p s. */
-    static double tension_weight(const double (&s)[3]);
+    /** The weight r = sum <s_i> / sum |s_i| of principal values @p s0,
+        @p s1, @p s2 (0 at zero stress; inline and of scalars, so that a
+        loop over a batch vectorises). */
+    static double tension_weight(const double s0, const double s1, const double s2)
+    {
+      const double num = std::max(s0, 0.) + std::max(s1, 0.) + std::max(s2, 0.);
+      const double den = std::abs(s0) + std::abs(s1) + std::abs(s2);
+      return den > 0 ? num / den : 0.;
+    }
 
     /** sigma : C_0^-1 : sigma_bar / 2, the energy stored in the point. */
     double stored_energy(const double *sigma, const double *sbar) const
@@ -501,17 +509,12 @@ namespace anvil::MaterialModel
         principal strain only). */
     void track_strain(const double *D, double dt, double *h) const;
 
-    /** Everything after the elastic trial (already in the history's
-        effective stress): return mapping at the dynamic increase factors
-        @p cdif, @p tdif (1 without rate effects), damage, nominal stress
-        @p stress and dissipation. */
-    void inelastic_update(const double *D, double dt, const double *dsig,
-                          const double *old_stress, double stored_old,
-                          double cdif, double tdif, double *stress, double *h) const;
-
-    /** The same after the first return to Lubliner's surface (made by
-        the caller; @p lubliner: whether it returned, @p principal: the
-        principal effective stresses after it). */
+    /** Everything after the elastic trial (in the history's effective
+        stress) and the first return to Lubliner's surface, which the
+        caller makes (@p lubliner: whether it returned, @p principal: the
+        principal effective stresses after it): the rest of the return at
+        the dynamic increase factors @p cdif, @p tdif (1 without rate
+        effects), damage, nominal stress @p stress and dissipation. */
     void inelastic_update(const double *D, double dt, const double *dsig,
                           const double *old_stress, double stored_old,
                           double cdif, double tdif, bool lubliner,
