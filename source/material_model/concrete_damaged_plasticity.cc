@@ -630,6 +630,7 @@ namespace anvil::MaterialModel
     constexpr unsigned int W = batch_size;
     double *sbars[W] = {sbar}, *hs[W] = {h};
     alignas(64) double        cdifs[W], tdifs[W], principal[3][W];
+    alignas(64) double        tensile[W], compressive[W];
     alignas(64) std::uint64_t active[W] = {1}, returned[W];
     for (unsigned int l = 0; l < W; ++l)
       {
@@ -638,7 +639,8 @@ namespace anvil::MaterialModel
         for (unsigned int i = 0; i < 3; ++i)
           principal[i][l] = sp[i];
       }
-    lubliner_return_lanes(sbars, hs, cdifs, tdifs, principal, active, returned);
+    lubliner_return_lanes(sbars, hs, cdifs, tdifs, principal, active, returned, tensile,
+                          compressive);
     for (unsigned int i = 0; i < 3; ++i)
       sp[i] = principal[i][0];
     return returned[0] != 0;
@@ -662,7 +664,9 @@ namespace anvil::MaterialModel
     const double (&tdif)[batch_size],
     double (&sp)[3][batch_size],
     const std::uint64_t (&active)[batch_size],
-    std::uint64_t (&returned)[batch_size]) const
+    std::uint64_t (&returned)[batch_size],
+    double (&tensile)[batch_size],
+    double (&compressive)[batch_size]) const
   {
     constexpr unsigned int W   = batch_size;
     const double           K   = bulk_modulus();
@@ -709,7 +713,11 @@ namespace anvil::MaterialModel
         returned[l] = going[l];
       }
     for (unsigned int l = 0; l < W; ++l)
-      any_going |= going[l];
+      {
+        tensile[l]     = ct0[l];
+        compressive[l] = cc0[l];
+        any_going |= going[l];
+      }
     if (any_going == 0)
       return;
     for (unsigned int l = 0; l < W; ++l)
@@ -861,6 +869,8 @@ namespace anvil::MaterialModel
             s[i][l] = on ? xn[i][l] : s[i][l];
           kt[l] = on ? ktn[l] : kt[l];
           kc[l] = on ? kcn[l] : kc[l];
+          tensile[l]     = on ? ct[l] : tensile[l];
+          compressive[l] = on ? cc[l] : compressive[l];
           F[l]  = on ? Fn[l] : F[l];
           dF[l] = on ? dFn[l] : dF[l];
         }
@@ -968,9 +978,13 @@ namespace anvil::MaterialModel
 
   // @sect3{The stress update}
   //
-  // The one-point form (the reference kernels, the material-point driver)
-  // and the batched form (the fast element loop) share everything after
-  // the elastic trial and the rate filter: the inelastic part.
+  // The one-point form (the reference kernels, the material-point driver,
+  // and every scene with viscosity or erosion by principal strain) and the
+  // batched form (the fast element loop) share the return: the same lane
+  // code for Lubliner's surface, the same cut-off. Damage, the nominal
+  // stress and the dissipation after it are the same formulas, written
+  // here for one point (with the viscous relaxation) and there across the
+  // lanes (tests/unit/fast_path compares the two forms).
   void ConcreteDamagedPlasticity::update_cauchy_stress(const double *D,
                                                        const double  dt,
                                                        double       *stress,
@@ -1030,9 +1044,8 @@ namespace anvil::MaterialModel
 
 
   // Everything after the first return to Lubliner's surface (the
-  // caller's: the one-point update's own, the batch's across its lanes):
-  // the rest of the return at the dynamic cohesions, damage, the nominal
-  // stress and the dissipation.
+  // one-point update's): the rest of the return at the dynamic cohesions,
+  // damage, the nominal stress and the dissipation.
   void ConcreteDamagedPlasticity::inelastic_update(const double *D,
                                                    const double  dt,
                                                    const double *dsig,
@@ -1099,7 +1112,10 @@ namespace anvil::MaterialModel
   // combination of the existing d_t and d_c; the batch computes these, the
   // rate filter and the test across its points. The others return to
   // Lubliner's surface together, lane by lane (lubliner_return_lanes()),
-  // and finish one at a time (the tension cut-off, damage, dissipation).
+  // take the tension cut-off one at a time where they cross it (rare),
+  // and finish together again: damage at the cohesions the return ended
+  // with, the nominal stress and the dissipation, by the same code as the
+  // trial's damage.
   //
   // The test runs in two stages. First at the cohesions without rate
   // effects, kept in the history: the dynamic increase factors are at least
@@ -1157,7 +1173,7 @@ namespace anvil::MaterialModel
 
     alignas(64) double sbar[6][W], sbar_old[6][W], dsig[6][W], stored_old[W], rate[W],
       hv[6][W], nominal[6][W];
-    alignas(64) double damage[W], dissipation[W], margin[W], largest[W], von_mises[W],
+    alignas(64) double damage[W], dissipation[W], margin[W], von_mises[W],
       mean_stress[W];
     alignas(64) double elastic[W]; // 1: inside the surfaces
     alignas(64) double cdif[W], tdif[W], undamaged[W];
@@ -1292,65 +1308,85 @@ namespace anvil::MaterialModel
                                     sbar_old[0][l], sbar_old[1][l], sbar_old[2][l],
                                     sbar_old[3][l], sbar_old[4][l], sbar_old[5][l]);
 
-    // The trial's largest and smallest principal values, across the lanes
-    // (a loop of their own, which vectorises).
-    alignas(64) double trial_s1[W], trial_s3[W];
+    // The trial's principal values, across the lanes (a loop of their
+    // own, which vectorises).
+    alignas(64) double trial_s[3][W];
     for (unsigned int l = 0; l < W; ++l)
-      Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
-                                           sbar[4][l], sbar[5][l], trial_s1[l], trial_s3[l]);
-    auto trial = [&](auto undamaged_tag) {
-      constexpr bool undamaged = decltype(undamaged_tag)::value;
+      {
+        Kinematics::extreme_principal_values(sbar[0][l], sbar[1][l], sbar[2][l], sbar[3][l],
+                                             sbar[4][l], sbar[5][l], trial_s[0][l],
+                                             trial_s[2][l]);
+        trial_s[1][l] = 3. * mean_stress[l] - trial_s[0][l] - trial_s[2][l];
+      }
+
+    // Damage, nominal stress and the step's dissipation of the lanes at
+    // effective stress x with principal values p (largest first) and
+    // damage variables d_t, d_c: ABAQUS's scalar 1 - d at the tension
+    // weight r, or, where the principal values have both signs, the
+    // combination per direction (see above). The dissipation is the
+    // mid-step stress power minus the change of stored energy, added where
+    // add is 1. (For the trial's damage at the existing d_t, d_c and for
+    // the inelastic points after their return: one code, across the
+    // lanes.)
+    const auto combine = [&](const double(&x)[6][W], const double(&p)[3][W],
+                             const double(&d_t)[W], const double(&d_c)[W],
+                             const double(&add)[W], double(&d)[W], double(&nominal)[6][W],
+                             double(&dissipated)[W]) __attribute__((always_inline)) {
       for (unsigned int l = 0; l < W; ++l)
         {
-          // The two surfaces at the static cohesions.
-          const double s1 = trial_s1[l], s3 = trial_s3[l];
-          const double mean = mean_stress[l], q = von_mises[l];
-          const double s2   = 3. * mean - s1 - s3;
-          // Inside at the static cohesions (first stage; see above), with a
-          // margin for the round-off of the principal values.
-          margin[l] = 1e-7 * std::max(std::abs(s1), std::abs(s3));
-          largest[l] = s1;
-          const bool inside = inside_surfaces(q, mean, s1, hv[2][l], hv[3][l], margin[l]);
-          elastic[l]        = inside ? 1. : 0.;
-          if constexpr (undamaged)
-            {
-              (void)s2;
-              damage[l] = 0.;
-              for (unsigned int k = 0; k < 6; ++k)
-                nominal[k][l] = sbar[k][l];
-              continue;
-            }
-
-          // Damage of the existing d_t, d_c at the trial: tension weight r.
-          const double d_t = hv[4][l], d_c = hv[5][l];
-          const double r   = tension_weight(s1, s2, s3);
-          auto intact = [&](const double w) { return intact_fraction(w, d_t, d_c); };
-          damage[l]           = 1. - intact(r);
-          const bool   mixed  = (s1 > 0) & (s3 < 0) & ((d_t > 0) | (d_c > 0));
-          const double x0 = sbar[0][l], x1 = sbar[1][l], x2 = sbar[2][l], x3 = sbar[3][l],
-                       x4 = sbar[4][l], x5 = sbar[5][l];
+          const double s1 = p[0][l], s2 = p[1][l], s3 = p[2][l];
+          const double dt_l = d_t[l], dc_l = d_c[l];
+          auto intact = [&](const double w) { return intact_fraction(w, dt_l, dc_l); };
+          d[l]             = 1. - intact(tension_weight(s1, s2, s3));
+          const bool mixed = (s1 > 0) & (s3 < 0) & ((dt_l > 0) | (dc_l > 0));
+          const double x0 = x[0][l], x1 = x[1][l], x2 = x[2][l], x3 = x[3][l], x4 = x[4][l],
+                       x5 = x[5][l];
           double per_direction[6];
           combine_per_direction(x0, x1, x2, x3, x4, x5, s1, s2, s3, intact(1.), intact(0.),
                                 per_direction);
           for (unsigned int k = 0; k < 6; ++k)
-            nominal[k][l] = mixed ? per_direction[k] : (1. - damage[l]) * sbar[k][l];
-          // (An undamaged point keeps its dissipation, as in an undamaged
-          // batch above: its result does not depend on its batch-mates.)
+            nominal[k][l] = mixed ? per_direction[k] : (1. - d[l]) * x[k][l];
           double work = 0;
           for (unsigned int k = 0; k < 6; ++k)
             work += (k < 3 ? 0.5 : 1.) * (s[k][l] + nominal[k][l]) * D[k][l] * dt;
-          const double dissipated =
+          const double step =
             work -
             stored_energy(nominal[0][l], nominal[1][l], nominal[2][l], nominal[3][l],
                           nominal[4][l], nominal[5][l], x0, x1, x2, x3, x4, x5) +
             stored_old[l];
-          dissipation[l] += (d_t == 0.) & (d_c == 0.) ? 0. : dissipated;
+          dissipated[l] += add[l] != 0. ? step : 0.;
         }
     };
+
+    // The two surfaces at the static cohesions: inside (first stage; see
+    // above), with a margin for the round-off of the principal values.
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        const double s1 = trial_s[0][l], s3 = trial_s[2][l];
+        margin[l]       = 1e-7 * std::max(std::abs(s1), std::abs(s3));
+        elastic[l] =
+          inside_surfaces(von_mises[l], mean_stress[l], s1, hv[2][l], hv[3][l], margin[l]) ? 1. :
+                                                                                            0.;
+      }
     if (undamaged_batch)
-      trial(std::true_type());
+      {
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            damage[l] = 0.;
+            for (unsigned int k = 0; k < 6; ++k)
+              nominal[k][l] = sbar[k][l];
+          }
+      }
     else
-      trial(std::false_type());
+      {
+        // Damage of the existing d_t, d_c at the trial. (An undamaged
+        // point keeps its dissipation, as in an undamaged batch above: its
+        // result does not depend on its batch-mates.)
+        alignas(64) double add[W];
+        for (unsigned int l = 0; l < W; ++l)
+          add[l] = 1. - undamaged[l];
+        combine(sbar, trial_s, hv[4], hv[5], add, damage, nominal, dissipation);
+      }
 
     for (unsigned int l = 0; l < W; ++l)
       {
@@ -1368,7 +1404,7 @@ namespace anvil::MaterialModel
               {
                 tdif[l]    = ConcreteDIF::tensile(rate[l], par.dif_strength);
                 cdif[l]    = ConcreteDIF::compressive(rate[l], par.cube_strength);
-                elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], largest[l],
+                elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], trial_s[0][l],
                                              tdif[l] * hv[2][l], cdif[l] * hv[3][l], margin[l]);
               }
           }
@@ -1382,7 +1418,9 @@ namespace anvil::MaterialModel
       }
 
     // The others: their histories in one piece, their returns to
-    // Lubliner's surface together, then each point's own update.
+    // Lubliner's surface together, then the tension cut-off where a point
+    // lies above it (one at a time: rare), and damage, the nominal stress
+    // and the dissipation across the lanes again.
     alignas(64) std::uint64_t outside[W], returned[W];
     std::uint64_t             any_outside = 0;
     for (unsigned int l = 0; l < W; ++l)
@@ -1394,7 +1432,7 @@ namespace anvil::MaterialModel
       return;
     double             h[W][max_history];
     double            *hp[W], *sb[W];
-    alignas(64) double principal[3][W];
+    alignas(64) double principal[3][W] = {};
     for (unsigned int l = 0; l < W; ++l)
       {
         hp[l] = h[l];
@@ -1410,24 +1448,55 @@ namespace anvil::MaterialModel
               principal[i][l] = p[i];
           }
       }
-    lubliner_return_lanes(sb, hp, cdif, tdif, principal, outside, returned);
+    // (c_t, c_c: the static cohesions at the hardening variables after the
+    // return, from the return's last evaluation.)
+    alignas(64) double c_t[W], c_c[W];
+    lubliner_return_lanes(sb, hp, cdif, tdif, principal, outside, returned, c_t, c_c);
+    const double tol = 1e-10 * par.curves.compressive_strength;
+    for (unsigned int l = 0; l < W; ++l)
+      if (outside[l] != 0 && principal[0][l] > tdif[l] * c_t[l] + tol)
+        {
+          double p[3] = {principal[0][l], principal[1][l], principal[2][l]};
+          complete_return(sb[l], h[l], cdif[l], tdif[l], p, returned[l] != 0);
+          for (unsigned int i = 0; i < 3; ++i)
+            principal[i][l] = p[i];
+          c_t[l] = tensile_cohesion(h[l][i_kappa_t], h[l][i_length], h[l][i_strength_factor]);
+          c_c[l] = compressive_cohesion(h[l][i_kappa_c], h[l][i_strength_factor]);
+        }
+    // The damage variables at the new cohesions (tension() and
+    // compression() without their lookups), zero where a lane stayed
+    // inside.
+    alignas(64) double x[6][W] = {}, d_t[W] = {}, d_c[W] = {}, add[W];
+    const double       b_t = par.tensile_plastic_fraction, b_c = par.compressive_plastic_fraction;
+    const double       E   = youngs_modulus();
     for (unsigned int l = 0; l < W; ++l)
       if (outside[l] != 0)
         {
-          double d[6], ds[6], old[6], st[6], p[3];
           for (unsigned int k = 0; k < 6; ++k)
-            {
-              d[k]   = D[k][l];
-              ds[k]  = dsig[k][l];
-              old[k] = s[k][l];
-            }
-          for (unsigned int i = 0; i < 3; ++i)
-            p[i] = principal[i][l];
-          inelastic_update(d, dt, ds, old, stored_old[l], cdif[l], tdif[l], returned[l] != 0, p,
-                           st, h[l]);
+            x[k][l] = sb[l][k];
+          d_t[l]         = (1. - b_t) * E * (h[l][i_kappa_t] / b_t);
+          d_c[l]         = (1. - b_c) * E * (h[l][i_kappa_c] / b_c);
+          dissipation[l] = h[l][i_dissipation];
+        }
+    for (unsigned int l = 0; l < W; ++l)
+      {
+        d_t[l] = c_t[l] > 0 ? d_t[l] / c_t[l] : 0.;
+        d_c[l] = c_c[l] > 0 ? d_c[l] / c_c[l] : 0.;
+        add[l] = outside[l] != 0 ? 1. : 0.;
+      }
+    combine(x, principal, d_t, d_c, add, damage, nominal, dissipation);
+    for (unsigned int l = 0; l < W; ++l)
+      if (outside[l] != 0)
+        {
+          h[l][i_tensile_cohesion]     = c_t[l];
+          h[l][i_compressive_cohesion] = c_c[l];
+          h[l][i_tensile_damage]       = d_t[l];
+          h[l][i_compressive_damage]   = d_c[l];
+          h[l][i_damage]               = damage[l];
+          h[l][i_dissipation]          = dissipation[l];
           history.scatter(l, h[l]);
           for (unsigned int k = 0; k < 6; ++k)
-            s[k][l] = st[k];
+            s[k][l] = nominal[k][l];
         }
   }
 

@@ -65,9 +65,15 @@ namespace anvil::Kinematics
    * run side by side, r = (J3 / (2 p^2)) (p / p^2), and the start needs
    * one division where the cubic start's three Newton steps needed three.
    */
-  inline void extreme_principal_values(const double a0, const double a1, const double a2,
-                                       const double a3, const double a4, const double a5,
-                                       double &largest, double &smallest)
+  // (Always inlined: a loop over a batch that calls it vectorises.)
+  [[gnu::always_inline]] inline void extreme_principal_values(const double a0,
+                                                              const double a1,
+                                                              const double a2,
+                                                              const double a3,
+                                                              const double a4,
+                                                              const double a5,
+                                                              double      &largest,
+                                                              double      &smallest)
   {
     const double m = (a0 + a1 + a2) / 3.;
     const double a = a0 - m, b = a1 - m, c = a2 - m;

@@ -401,16 +401,21 @@ namespace anvil::MaterialModel
     /** The same for the points in the lanes of @p active (nonzero) at
         once, with effective stresses @p sbar, histories @p h and the
         factors @p cdif, @p tdif of each lane; @p principal as above,
-        lane by lane. @p returned: 1 where a lane's trial was outside.
-        (The one-point form is lane 0 of this; the batched update returns
-        its inelastic points together.) */
+        lane by lane. @p returned: 1 where a lane's trial was outside;
+        @p tensile, @p compressive: the static cohesions at each lane's
+        hardening variables on exit (the return has them from its last
+        evaluation: no curve lookup for the caller). (The one-point form
+        is lane 0 of this; the batched update returns its inelastic points
+        together.) */
     void lubliner_return_lanes(double *const (&sbar)[batch_size],
                                double *const (&h)[batch_size],
                                const double (&cdif)[batch_size],
                                const double (&tdif)[batch_size],
                                double (&principal)[3][batch_size],
                                const std::uint64_t (&active)[batch_size],
-                               std::uint64_t (&returned)[batch_size]) const;
+                               std::uint64_t (&returned)[batch_size],
+                               double (&tensile)[batch_size],
+                               double (&compressive)[batch_size]) const;
 
     /** The return of the effective stress @p sbar to the yield surface
         after the first return to Lubliner's surface (@p lubliner: whether
@@ -511,7 +516,7 @@ namespace anvil::MaterialModel
 
     /** Everything after the elastic trial (in the history's effective
         stress) and the first return to Lubliner's surface, which the
-        caller makes (@p lubliner: whether it returned, @p principal: the
+        one-point update makes (@p lubliner: whether it returned, @p principal: the
         principal effective stresses after it): the rest of the return at
         the dynamic increase factors @p cdif, @p tdif (1 without rate
         effects), damage, nominal stress @p stress and dissipation. */
