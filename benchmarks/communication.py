@@ -23,12 +23,19 @@ and in contact) and the column (the hammer's first milliseconds) on one
 and two processes over the same steps (one process pinned to each core in
 turn), and prints the two-process parallel efficiency against the faster
 and against the slower core (--repeat N: the fastest of N runs each, in
-turn).
+turn). It also runs two one-process runs side by side, one on each core:
+their step against the step alone is what the machine itself takes from
+each process when both cores work (shared caches, memory bandwidth, or
+two virtual cores on one physical one), so t_alone / t_side_by_side is the
+ceiling of any code's two-process efficiency here, and t_side_by_side /
+(2 t_two) what is left to the code (its communication, waiting and
+imbalance).
 """
 import argparse
 import os
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.abspath(os.path.join(HERE, ".."))
@@ -79,10 +86,12 @@ def wall_per_step(anvil, work, scene, name, np, end_times, core=None):
     when given (taskset)."""
     points = []
     for end_time in end_times:
-        run_name = f"{name}_time_np{np}_{end_time:g}"
+        run_name = f"{name}_time_np{np}_{end_time:g}" + ("" if core is None else f"_core{core}")
         cmd = ["mpirun", "--oversubscribe", "-np", str(np), anvil, scene]
         if core is not None:
-            cmd = ["taskset", "-c", str(core)] + cmd
+            # (mpirun binds a lone rank to core 0 whatever taskset allows:
+            # not binding leaves it to the cores taskset gives.)
+            cmd = ["taskset", "-c", str(core)] + cmd[:1] + ["--bind-to", "none"] + cmd[1:]
         for s in (f"Simulation/Name={run_name}", f"Simulation/End time={end_time}",
                   "Simulation/Output interval=0", "Simulation/Plots=false",
                   "Simulation/Overwrite existing output=true", "Simulation/End kinetic energy fraction=0"):
@@ -133,20 +142,29 @@ def main():
                  ("column", COLUMN, (1e-3, 5e-3))]
         print("| scene | elements | steps timed | one process on core 0 / core 1, ms / step "
               "| two processes, ms / step | efficiency against the faster core "
-              "| against the slower core |")
-        print("| --- | --- | --- | --- | --- | --- | --- |")
+              "| against the slower core | two one-process runs side by side, ms / step "
+              "| the machine's ceiling | the code's share |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
         for name, scene, ends in times:
             if name not in a.scenes.split(","):
                 continue
             t1 = [1e300, 1e300]
             t2 = 1e300
+            side = 1e300
             for _ in range(a.repeat):
                 for core in (0, 1):
                     t, steps, elements = wall_per_step(anvil, work, scene, name, 1, ends, core)
                     t1[core] = min(t1[core], t)
                 t2 = min(t2, wall_per_step(anvil, work, scene, name, 2, ends)[0])
+                # The same one-process run on both cores at once (the slower
+                # of the two: a two-process run waits for it).
+                with ThreadPoolExecutor(2) as pool:
+                    pair = list(pool.map(lambda core: wall_per_step(anvil, work, scene, name + "_side", 1,
+                                                                    ends, core)[0], (0, 1)))
+                side = min(side, max(pair))
             print(f"| {name} | {elements:.0f} | {steps:.0f} | {1e3 * t1[0]:.2f} / {1e3 * t1[1]:.2f} | "
-                  f"{1e3 * t2:.2f} | {100 * min(t1) / (2 * t2):.0f} % | {100 * max(t1) / (2 * t2):.0f} % |",
+                  f"{1e3 * t2:.2f} | {100 * min(t1) / (2 * t2):.0f} % | {100 * max(t1) / (2 * t2):.0f} % | "
+                  f"{1e3 * side:.2f} | {100 * min(t1) / side:.0f} % | {100 * side / (2 * t2):.0f} % |",
                   flush=True)
         return
     print("| scene | processes | elements | steps counted | p2p messages / rank / step | p2p bytes / rank / step "
