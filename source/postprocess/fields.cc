@@ -48,86 +48,21 @@ namespace anvil::Postprocess
       displacement -= reference_position;
       displacement.update_ghost_values();
 
-      const unsigned int    n_cells = triangulation.n_active_cells();
-      std::vector<Vector<float>> stress(6, Vector<float>(n_cells));
-      std::vector<Vector<float>> strain(6, Vector<float>(n_cells));
-      Vector<float> von_mises(n_cells), hourglass_density(n_cells), internal_density(n_cells);
-      Vector<float> body_id(n_cells), rank(n_cells);
-      const float   my_rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-
-      // Scalar history variables of the materials (effective plastic strain,
-      // ...), averaged over each element's points; and the erosion flag.
-      std::map<std::string, Vector<float>> history_fields;
-      for (const auto &group : element_groups)
-        for (const auto &name : group.get_material().history_names())
-          if (!name.empty() && name.rfind("back_stress", 0) != 0)
-            history_fields.emplace(name, Vector<float>(n_cells));
-      Vector<float> eroded(n_cells);
-
-      const double *x = position.begin();
-      for (const auto &group : element_groups)
-        {
-        const auto names = group.get_material().history_names();
-        for (unsigned int e = 0; e < group.n_elements(); ++e)
-          if (group.element_is_owned(e))
-          {
-            for (unsigned int k = 0; k < names.size(); ++k)
-              if (history_fields.count(names[k]))
-                {
-                  double mean = 0;
-                  for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
-                    mean += group.history_output(e, q, k) /
-                            group.n_quadrature_points();
-                  history_fields[names[k]][group.element_cell_index(e)] = mean;
-                }
-            eroded[group.element_cell_index(e)] = group.element_is_eroded(e);
-            const unsigned int c = group.element_cell_index(e);
-            double             s[6];
-            group.cauchy_stress(e, x, s);
-            for (unsigned int k = 0; k < 6; ++k)
-              stress[k][c] = s[k];
-            const double p = (s[0] + s[1] + s[2]) / 3.;
-            von_mises[c]   = std::sqrt(1.5 * ((s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
-                                            (s[2] - p) * (s[2] - p) +
-                                            2. * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
-            const double V0      = group.element_reference_volume(e);
-            hourglass_density[c] = group.element_hourglass_energy(e) / V0;
-            internal_density[c]  = group.element_internal_energy(e) / V0;
-          }
-        }
-
-      const QMidpoint<3>                 centre;
-      FEValues<3>                        fe_values(get_fe(), centre, update_gradients);
-      std::vector<Tensor<2, 3>>          grad(1);
-      const FEValuesExtractors::Vector   u(0);
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            const unsigned int c = cell->active_cell_index();
-            fe_values.reinit(cell);
-            fe_values[u].get_function_gradients(displacement, grad);
-            const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad[0];
-            const Tensor<2, 3> E = 0.5 * (transpose(F) * F - unit_symmetric_tensor<3>());
-            const unsigned int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-            for (unsigned int k = 0; k < 6; ++k)
-              strain[k][c] = E[ij[k][0]][ij[k][1]];
-            body_id[c] = cell->material_id();
-            rank[c]    = my_rank;
-          }
-
       // One connected piece per process: the points of its cells (shared
       // by the cells around them), node ids from the scene's coarse vertices
       // and element ids from its coarse cells, the same on any number of
-      // processes.
+      // processes. Each cell field goes straight into the piece, in the
+      // order of the piece's cells (slot), as it is written (float32 as
+      // float): a frame holds each value once.
       Vtu::Piece                 piece;
       std::vector<std::int64_t>  point_of(triangulation.n_vertices(), -1);
       std::vector<double>        node_id, u_values, v_values, element_id;
-      std::vector<unsigned int>  cells;
+      std::vector<int>           slot(triangulation.n_active_cells(), -1);
       static constexpr unsigned int vtk_order[8] = {0, 1, 3, 2, 4, 5, 7, 6};
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            cells.push_back(cell->active_cell_index());
+            slot[cell->active_cell_index()] = element_id.size();
             element_id.push_back(cell->id().get_coarse_cell_id());
             for (const unsigned int v : vtk_order)
               {
@@ -147,34 +82,118 @@ namespace anvil::Postprocess
                 piece.hexahedra.push_back(point_of[vertex]);
               }
           }
-      using Type = Vtu::Array::Type;
-      piece.point_data.push_back({"displacement", 3, Type::float64, u_values});
-      piece.point_data.push_back({"velocity", 3, Type::float64, v_values});
-      piece.point_data.push_back({"node_id", 1, Type::int64, node_id});
-      piece.cell_data.push_back({"element_id", 1, Type::int64, element_id});
-      auto add = [&](const std::string &name, const Vector<float> &field, const Type type) {
-        std::vector<double> values(cells.size());
-        for (unsigned int i = 0; i < cells.size(); ++i)
-          values[i] = field[cells[i]];
-        piece.cell_data.push_back({name, 1, type, values});
+      const std::size_t n_cells = element_id.size();
+      using Type                = Vtu::Array::Type;
+      piece.point_data.push_back({"displacement", 3, Type::float64, std::move(u_values), {}});
+      piece.point_data.push_back({"velocity", 3, Type::float64, std::move(v_values), {}});
+      piece.point_data.push_back({"node_id", 1, Type::int64, std::move(node_id), {}});
+      piece.cell_data.push_back({"element_id", 1, Type::int64, std::move(element_id), {}});
+      // A cell field of the piece: float32 in floats, int64 in values.
+      const auto field = [&](const std::string &name, const Type type) -> Vtu::Array & {
+        piece.cell_data.push_back({name, 1, type, {}, {}});
+        if (type == Type::float32)
+          piece.cell_data.back().floats.assign(n_cells, 0.f);
+        else
+          piece.cell_data.back().values.assign(n_cells, 0.);
+        return piece.cell_data.back();
       };
-      add("body", body_id, Type::int64);
       const char *names[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+      // (Indices into piece.cell_data: a reference would not survive the
+      // pushes that follow.)
+      const std::size_t body_id = piece.cell_data.size();
+      field("body", Type::int64);
+      std::size_t stress[6], strain[6];
       for (unsigned int k = 0; k < 6; ++k)
         {
-          add(std::string("stress_") + names[k], stress[k], Type::float32);
-          add(std::string("strain_") + names[k], strain[k], Type::float32);
+          stress[k] = piece.cell_data.size();
+          field(std::string("stress_") + names[k], Type::float32);
+          strain[k] = piece.cell_data.size();
+          field(std::string("strain_") + names[k], Type::float32);
         }
-      add("von_mises", von_mises, Type::float32);
-      add("internal_energy_density", internal_density, Type::float32);
-      add("hourglass_energy_density", hourglass_density, Type::float32);
-      for (const auto &[name, field] : history_fields)
-        add(name, field, Type::float32);
-      if (n_eroded_elements() > 0 || std::any_of(element_groups.begin(), element_groups.end(), [](const auto &g) {
-            return g.get_material().erodes();
-          }))
-        add("eroded", eroded, Type::float32);
-      add("mpi_rank", rank, Type::int64);
+      const std::size_t von_mises = piece.cell_data.size();
+      field("von_mises", Type::float32);
+      const std::size_t internal_density = piece.cell_data.size();
+      field("internal_energy_density", Type::float32);
+      const std::size_t hourglass_density = piece.cell_data.size();
+      field("hourglass_energy_density", Type::float32);
+      // Scalar history variables of the materials (effective plastic strain,
+      // ...), averaged over each element's points, in the order of their
+      // names; and the erosion flag.
+      std::map<std::string, std::size_t> history_fields;
+      for (const auto &group : element_groups)
+        for (const auto &name : group.get_material().history_names())
+          if (!name.empty() && name.rfind("back_stress", 0) != 0)
+            history_fields.emplace(name, 0);
+      for (auto &[name, index] : history_fields)
+        {
+          index = piece.cell_data.size();
+          field(name, Type::float32);
+        }
+      const bool with_eroded =
+        n_eroded_elements() > 0 || std::any_of(element_groups.begin(), element_groups.end(),
+                                               [](const auto &g) { return g.get_material().erodes(); });
+      const std::size_t eroded = piece.cell_data.size();
+      if (with_eroded)
+        field("eroded", Type::float32);
+      const std::size_t rank = piece.cell_data.size();
+      field("mpi_rank", Type::int64);
+      const auto cell_value = [&](const std::size_t array, const unsigned int c) -> float & {
+        return piece.cell_data[array].floats[slot[c]];
+      };
+
+      const double *x = position.begin();
+      for (const auto &group : element_groups)
+        {
+        const auto names = group.get_material().history_names();
+        for (unsigned int e = 0; e < group.n_elements(); ++e)
+          if (group.element_is_owned(e))
+          {
+            const unsigned int c = group.element_cell_index(e);
+            for (unsigned int k = 0; k < names.size(); ++k)
+              if (history_fields.count(names[k]))
+                {
+                  double mean = 0;
+                  for (unsigned int q = 0; q < group.n_quadrature_points(); ++q)
+                    mean += group.history_output(e, q, k) /
+                            group.n_quadrature_points();
+                  cell_value(history_fields[names[k]], c) = mean;
+                }
+            if (with_eroded)
+              cell_value(eroded, c) = group.element_is_eroded(e);
+            double             s[6];
+            group.cauchy_stress(e, x, s);
+            for (unsigned int k = 0; k < 6; ++k)
+              cell_value(stress[k], c) = s[k];
+            const double p = (s[0] + s[1] + s[2]) / 3.;
+            cell_value(von_mises, c) =
+              std::sqrt(1.5 * ((s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) +
+                               (s[2] - p) * (s[2] - p) +
+                               2. * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+            const double V0      = group.element_reference_volume(e);
+            cell_value(hourglass_density, c) = group.element_hourglass_energy(e) / V0;
+            cell_value(internal_density, c)  = group.element_internal_energy(e) / V0;
+          }
+        }
+
+      const QMidpoint<3>                 centre;
+      FEValues<3>                        fe_values(get_fe(), centre, update_gradients);
+      std::vector<Tensor<2, 3>>          grad(1);
+      const FEValuesExtractors::Vector   u(0);
+      const double                       my_rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const unsigned int c = cell->active_cell_index();
+            fe_values.reinit(cell);
+            fe_values[u].get_function_gradients(displacement, grad);
+            const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad[0];
+            const Tensor<2, 3> E = 0.5 * (transpose(F) * F - unit_symmetric_tensor<3>());
+            const unsigned int ij[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+            for (unsigned int k = 0; k < 6; ++k)
+              cell_value(strain[k], c) = E[ij[k][0]][ij[k][1]];
+            piece.cell_data[body_id].values[slot[c]] = cell->material_id();
+            piece.cell_data[rank].values[slot[c]]    = my_rank;
+          }
 
       // Each process its piece, rank 0 the record naming them.
       const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);

@@ -16,27 +16,63 @@ namespace anvil::Vtu
     const char *const alphabet =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-    void append_base64(const std::vector<unsigned char> &bytes, std::string &out)
+    // Base64 of a byte stream, written to @p out as it comes (three bytes
+    // make four characters): no copy of an array in bytes or in text.
+    class Base64
     {
-      std::size_t i = 0;
-      for (; i + 2 < bytes.size(); i += 3)
-        {
-          const unsigned int v = (bytes[i] << 16) | (bytes[i + 1] << 8) | bytes[i + 2];
-          out += alphabet[(v >> 18) & 63];
-          out += alphabet[(v >> 12) & 63];
-          out += alphabet[(v >> 6) & 63];
-          out += alphabet[v & 63];
-        }
-      if (i < bytes.size())
-        {
-          const unsigned int v =
-            (bytes[i] << 16) | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0);
-          out += alphabet[(v >> 18) & 63];
-          out += alphabet[(v >> 12) & 63];
-          out += i + 1 < bytes.size() ? alphabet[(v >> 6) & 63] : '=';
-          out += '=';
-        }
-    }
+    public:
+      explicit Base64(std::ostream &out)
+        : out(out)
+      {}
+
+      void put(const void *data, const std::size_t size)
+      {
+        const auto *bytes = static_cast<const unsigned char *>(data);
+        for (std::size_t i = 0; i < size; ++i)
+          {
+            triple[held++] = bytes[i];
+            if (held == 3)
+              {
+                const unsigned int v = (triple[0] << 16) | (triple[1] << 8) | triple[2];
+                text[used++]         = alphabet[(v >> 18) & 63];
+                text[used++]         = alphabet[(v >> 12) & 63];
+                text[used++]         = alphabet[(v >> 6) & 63];
+                text[used++]         = alphabet[v & 63];
+                held                 = 0;
+                if (used == sizeof(text))
+                  flush();
+              }
+          }
+      }
+
+      /** The last one or two bytes, padded with '='. */
+      void finish()
+      {
+        if (held > 0)
+          {
+            const unsigned int v = (triple[0] << 16) | (held > 1 ? triple[1] << 8 : 0);
+            text[used++]         = alphabet[(v >> 18) & 63];
+            text[used++]         = alphabet[(v >> 12) & 63];
+            text[used++]         = held > 1 ? alphabet[(v >> 6) & 63] : '=';
+            text[used++]         = '=';
+            held                 = 0;
+          }
+        flush();
+      }
+
+    private:
+      void flush()
+      {
+        out.write(text, used);
+        used = 0;
+      }
+
+      std::ostream &out;
+      unsigned char triple[3] = {};
+      unsigned int  held      = 0;
+      char          text[4096];
+      std::size_t   used = 0;
+    };
 
     const char *type_name(const Array::Type type)
     {
@@ -47,39 +83,50 @@ namespace anvil::Vtu
 
     // One DataArray element: a UInt64 byte count, then the values, in one
     // base64 stream (VTK's 'binary' inline format without compression).
+    // @p value(i) gives the i-th of @p n values, as double or float.
+    template <typename Value>
     void data_array(std::ostream &xml, const std::string &name, const Array::Type type,
-                    const unsigned int components, const std::vector<double> &values,
+                    const unsigned int components, const std::size_t n, const Value &value,
                     const bool field_data = false)
     {
-      const std::size_t             width = type == Array::Type::float32 ? 4 : 8;
-      const std::uint64_t           size  = values.size() * width;
-      std::vector<unsigned char>    bytes(8 + size);
-      std::memcpy(bytes.data(), &size, 8);
-      for (std::size_t i = 0; i < values.size(); ++i)
-        {
-          unsigned char *at = bytes.data() + 8 + i * width;
-          if (type == Array::Type::float32)
-            {
-              const float v = static_cast<float>(values[i]);
-              std::memcpy(at, &v, 4);
-            }
-          else if (type == Array::Type::float64)
-            std::memcpy(at, &values[i], 8);
-          else
-            {
-              const std::int64_t v = static_cast<std::int64_t>(values[i]);
-              std::memcpy(at, &v, 8);
-            }
-        }
-      std::string text;
-      text.reserve(bytes.size() * 4 / 3 + 4);
-      append_base64(bytes, text);
+      const std::size_t   width = type == Array::Type::float32 ? 4 : 8;
+      const std::uint64_t size  = n * width;
       xml << "        <DataArray type=\"" << type_name(type) << "\" Name=\"" << name << "\"";
       if (components > 1)
         xml << " NumberOfComponents=\"" << components << "\"";
       if (field_data)
-        xml << " NumberOfTuples=\"" << values.size() << "\"";
-      xml << " format=\"binary\">\n          " << text << "\n        </DataArray>\n";
+        xml << " NumberOfTuples=\"" << n << "\"";
+      xml << " format=\"binary\">\n          ";
+      Base64 text(xml);
+      text.put(&size, 8);
+      for (std::size_t i = 0; i < n; ++i)
+        if (type == Array::Type::float32)
+          {
+            const float v = static_cast<float>(value(i));
+            text.put(&v, 4);
+          }
+        else if (type == Array::Type::float64)
+          {
+            const double v = value(i);
+            text.put(&v, 8);
+          }
+        else
+          {
+            const std::int64_t v = static_cast<std::int64_t>(value(i));
+            text.put(&v, 8);
+          }
+      text.finish();
+      xml << "\n        </DataArray>\n";
+    }
+
+    void data_array(std::ostream &xml, const Array &a)
+    {
+      if (a.type == Array::Type::float32 && !a.floats.empty())
+        data_array(xml, a.name, a.type, a.components, a.floats.size(),
+                   [&](const std::size_t i) { return a.floats[i]; });
+      else
+        data_array(xml, a.name, a.type, a.components, a.values.size(),
+                   [&](const std::size_t i) { return a.values[i]; });
     }
   } // namespace
 
@@ -92,35 +139,39 @@ namespace anvil::Vtu
            "header_type=\"UInt64\">\n"
         << "  <UnstructuredGrid>\n"
         << "    <FieldData>\n";
-    data_array(xml, "TIME", Array::Type::float64, 1, {time}, true);
-    data_array(xml, "CYCLE", Array::Type::int64, 1, {double(cycle)}, true);
+    const double time_value = time, cycle_value = cycle;
+    data_array(xml, "TIME", Array::Type::float64, 1, 1, [&](std::size_t) { return time_value; },
+               true);
+    data_array(xml, "CYCLE", Array::Type::int64, 1, 1, [&](std::size_t) { return cycle_value; },
+               true);
     xml << "    </FieldData>\n"
         << "    <Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells
         << "\">\n      <Points>\n";
-    data_array(xml, "Points", Array::Type::float64, 3, piece.points);
+    data_array(xml, "Points", Array::Type::float64, 3, piece.points.size(),
+               [&](const std::size_t i) { return piece.points[i]; });
     xml << "      </Points>\n      <Cells>\n";
-    std::vector<double> connectivity(piece.hexahedra.begin(), piece.hexahedra.end());
-    std::vector<double> offsets(n_cells);
-    for (std::size_t c = 0; c < n_cells; ++c)
-      offsets[c] = 8. * (c + 1);
-    data_array(xml, "connectivity", Array::Type::int64, 1, connectivity);
-    data_array(xml, "offsets", Array::Type::int64, 1, offsets);
+    data_array(xml, "connectivity", Array::Type::int64, 1, piece.hexahedra.size(),
+               [&](const std::size_t i) { return double(piece.hexahedra[i]); });
+    data_array(xml, "offsets", Array::Type::int64, 1, n_cells,
+               [](const std::size_t c) { return 8. * (c + 1); });
     // VTK wants UInt8 types; Int64 is read as well, but keep to the format.
     {
-      std::vector<unsigned char> bytes(8 + n_cells, 12);
-      const std::uint64_t        size = n_cells;
-      std::memcpy(bytes.data(), &size, 8);
-      std::string text;
-      append_base64(bytes, text);
-      xml << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n          "
-          << text << "\n        </DataArray>\n";
+      xml << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n          ";
+      Base64              text(xml);
+      const std::uint64_t size = n_cells;
+      text.put(&size, 8);
+      const unsigned char hexahedron = 12;
+      for (std::size_t c = 0; c < n_cells; ++c)
+        text.put(&hexahedron, 1);
+      text.finish();
+      xml << "\n        </DataArray>\n";
     }
     xml << "      </Cells>\n      <PointData>\n";
     for (const auto &a : piece.point_data)
-      data_array(xml, a.name, a.type, a.components, a.values);
+      data_array(xml, a);
     xml << "      </PointData>\n      <CellData>\n";
     for (const auto &a : piece.cell_data)
-      data_array(xml, a.name, a.type, a.components, a.values);
+      data_array(xml, a);
     xml << "      </CellData>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
   }
 

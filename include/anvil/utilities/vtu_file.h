@@ -28,7 +28,10 @@ namespace anvil::Vtu
     std::string         name;
     unsigned int        components = 1;
     Type                type       = Type::float32;
-    std::vector<double> values; // components per point or cell
+    std::vector<double> values; // components per point or cell (float64, int64)
+    /** A float32 array's values as written (half the memory of values,
+        which a float32 array leaves empty when it has these). */
+    std::vector<float> floats;
   };
 
   /** What one process writes. */
