@@ -59,6 +59,22 @@ namespace anvil::Postprocess
       std::vector<double>        node_id, u_values, v_values, element_id;
       std::vector<int>           slot(triangulation.n_active_cells(), -1);
       static constexpr unsigned int vtk_order[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+      // (The piece's sizes first: arrays grown by push_back would hold up
+      // to twice what they need.)
+      std::size_t n_points = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : vtk_order)
+            if (point_of[cell->vertex_index(v)] < 0)
+              point_of[cell->vertex_index(v)] = n_points++;
+      std::fill(point_of.begin(), point_of.end(), -1);
+      const unsigned int n_owned = triangulation.n_locally_owned_active_cells();
+      piece.points.reserve(3 * n_points);
+      u_values.reserve(3 * n_points);
+      v_values.reserve(3 * n_points);
+      node_id.reserve(n_points);
+      piece.hexahedra.reserve(8 * n_owned);
+      element_id.reserve(n_owned);
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
