@@ -105,13 +105,12 @@ namespace anvil::Postprocess
       piece.point_data.push_back({"node_id", 1, Type::int64, std::move(node_id), {}});
       piece.cell_data.push_back({"element_id", 1, Type::int64, std::move(element_id), {}});
       // A cell field of the piece: float32 in floats, int64 in values.
-      const auto field = [&](const std::string &name, const Type type) -> Vtu::Array & {
+      const auto field = [&](const std::string &name, const Type type) {
         piece.cell_data.push_back({name, 1, type, {}, {}});
         if (type == Type::float32)
           piece.cell_data.back().floats.assign(n_cells, 0.f);
         else
           piece.cell_data.back().values.assign(n_cells, 0.);
-        return piece.cell_data.back();
       };
       const char *names[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
       // (Indices into piece.cell_data: a reference would not survive the
