@@ -484,6 +484,32 @@ namespace anvil::MaterialModel
              c_c;
     }
 
+    /** The uniaxial damage at hardening variable @p kappa with plastic
+        fraction @p b, Young's modulus @p E and effective cohesion
+        @p cohesion there: d = (1 - b) E (kappa / b) / c (0 at c = 0). */
+    static double damage_at(const double kappa, const double b, const double E,
+                            const double cohesion)
+    {
+      const double X = (1. - b) * E * (kappa / b);
+      return cohesion > 0 ? X / cohesion : 0.;
+    }
+
+    /** Damage @p d, nominal stress @p nominal and the step's dissipation
+        (added to @p dissipated where @p add is 1) of a batch's lanes at
+        effective stress @p x with principal values @p p (largest first)
+        and damage variables @p d_t, @p d_c, the step from stress @p old
+        with deformation rate @p D over @p dt, stored energy @p stored_old
+        before it. The batched update's code for its trial and its
+        returned points; the one-point update runs it on its point in
+        every lane. (Defined, always inlined, where it is used.) */
+    inline void damage_lanes(const double (&x)[6][batch_size], const double (&p)[3][batch_size],
+                             const double (&d_t)[batch_size], const double (&d_c)[batch_size],
+                             const double (&old)[6][batch_size], const double (&D)[6][batch_size],
+                             double dt, const double (&stored_old)[batch_size],
+                             const double (&add)[batch_size], double (&d)[batch_size],
+                             double (&nominal)[6][batch_size],
+                             double (&dissipated)[batch_size]) const;
+
     /** 1 - d of ABAQUS's combination, (1 - s_t d_c)(1 - s_c d_t) with
         s_t = 1 - w_t r, s_c = 1 - w_c (1 - r), at tension weight @p r. */
     double intact_fraction(const double r, const double d_t, const double d_c) const
