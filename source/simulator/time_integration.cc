@@ -54,7 +54,11 @@ namespace anvil
   double Simulator::compute_internal_forces(const double dt_previous)
   {
     TimerOutput::Scope t(*timer, "element forces");
-    double dt_crit = solids->add_forces(dt_previous);
+    const auto start   = std::chrono::steady_clock::now();
+    double     dt_crit = solids->add_forces(dt_previous);
+    if (record_element_balance)
+      element_loop_seconds.push_back(
+        std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count());
     t.stop();
     for (auto &family : families)
       if (!family->empty() && family->has_forces())
@@ -652,6 +656,9 @@ namespace anvil
         loop = LoopState();
         loop.next_output = output_interval;
       }
+    // (The element loop's balance: this run's steps only.)
+    record_element_balance = print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
+    element_loop_seconds.clear();
     const auto   wall_start    = std::chrono::steady_clock::now();
     const double time_start    = time;
     double      &dt_previous   = loop.dt_previous;
@@ -839,7 +846,49 @@ namespace anvil
           << "  results: " << output_directory << "/energy.csv, "
           << output_directory << "/solution.pvd" << std::endl;
     if (print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
-      timer->print_wall_time_statistics(mpi_communicator);
+      {
+        timer->print_wall_time_statistics(mpi_communicator);
+        print_element_balance();
+      }
+  }
+
+
+  // @sect3{Balance of the element loop}
+  //
+  // A step waits for its slowest process. The element loop of step s took
+  // t_rs on process r; the run's element time is sum_s max_r t_rs, against
+  // the mean sum_s mean_r t_rs that a perfect balance would give. The gap
+  // has two parts: the partition's, max_r sum_s t_rs (one process holding
+  // more work all along), and what is left, the work moving between the
+  // processes step by step (the cracking concrete under a hammer, a host
+  // core slowed for a while). Both are printed with the wall-time
+  // statistics; one reduction of the step-by-step times at the end.
+  void Simulator::print_element_balance() const
+  {
+    const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const unsigned int  steps   = Utilities::MPI::min(static_cast<unsigned int>(element_loop_seconds.size()),
+                                                    mpi_communicator);
+    std::vector<double> mine(element_loop_seconds.begin(), element_loop_seconds.begin() + steps);
+    std::vector<double> slowest(steps), total(steps);
+    Utilities::MPI::max(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(slowest));
+    Utilities::MPI::sum(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(total));
+    double own = 0, by_step = 0, mean = 0;
+    for (unsigned int s = 0; s < steps; ++s)
+      {
+        own += mine[s];
+        by_step += slowest[s];
+        mean += total[s] / n_ranks;
+      }
+    const double whole_run = Utilities::MPI::max(own, mpi_communicator);
+    if (steps == 0 || !(mean > 0))
+      return;
+    pcout << std::fixed << std::setprecision(3) << "  element loop over " << steps
+          << " steps, wall time: the processes' mean " << mean << " s; the slowest process over the run "
+          << whole_run << " s (+" << std::setprecision(1) << 100. * (whole_run / mean - 1.)
+          << " %: the partition); the slowest process of each step, summed, " << std::setprecision(3)
+          << by_step << " s (+" << std::setprecision(1) << 100. * (by_step / mean - 1.)
+          << " %: the partition and the work moving between processes)" << std::defaultfloat
+          << std::setprecision(6) << std::endl;
   }
 
 

@@ -294,6 +294,13 @@ namespace anvil
     bool      stop_requested = false;
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
+    /** With 'Print wall times' on several processes: the wall time of each
+        step's element loop on this process (this run's steps), and what
+        the ranks lose waiting for the slowest one, printed at the end
+        (print_element_balance()). */
+    std::vector<float> element_loop_seconds;
+    bool               record_element_balance = false;
+    void               print_element_balance() const;
     void   apply_contact(double dt_previous);
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
