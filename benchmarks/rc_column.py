@@ -9,8 +9,8 @@ process: the peak resident set per element, and the marginal memory per
 element (the production column's peak against the coarse column's, 2,700
 elements, over the difference in elements: what an element, its nodes and
 its share of the bars cost, without the executable and its libraries),
-and of it what summary.csv accounts for: the triangulation with its p4est
-forest, the DoF handler, the nodal vectors and the element groups' state.
+and of it what summary.csv accounts for: the triangulation, the DoF
+handler, the nodal vectors and the element groups' state.
 `END_TIME_S = 0.15` runs the issue's whole 150 ms.
 
 Mesh study (--mesh-study): the bond-slip column at 20, 15 and 10 mm to the
@@ -119,7 +119,7 @@ end
     print(f"  memory (np = 1): peak resident {peak_kb / 1024:.0f} MB, {1024 * peak_kb / elements:.0f} bytes per "
           f"element; marginal {marginal:.0f} bytes per element (against the coarse column's "
           f"{int(s['elements'])} elements, {run.peak_kb / 1024:.0f} MB)")
-    parts = [("triangulation (deal.II + p4est)", "memory_triangulation_bytes"),
+    parts = [("triangulation", "memory_triangulation_bytes"),
              ("DoF handler", "memory_dof_handler_bytes"), ("nodal vectors", "memory_nodal_vectors_bytes"),
              ("element state", "memory_element_state_bytes")]
     if all(key in accounted for _, key in parts):

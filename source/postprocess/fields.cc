@@ -49,7 +49,7 @@ namespace anvil::Postprocess
       displacement.update_ghost_values();
 
       // One connected piece per process: the points of its cells (shared
-      // by the cells around them), node ids from the scene's coarse vertices
+      // by the cells around them), node ids from the scene's vertices
       // and element ids from its coarse cells, the same on any number of
       // processes. Each cell field goes straight into the piece, in the
       // order of the piece's cells (slot), as it is written (float32 as
@@ -86,7 +86,7 @@ namespace anvil::Postprocess
                 if (point_of[vertex] < 0)
                   {
                     point_of[vertex] = node_id.size();
-                    node_id.push_back(vertex);
+                    node_id.push_back(scene_vertex_index(vertex));
                     for (unsigned int d = 0; d < 3; ++d)
                       {
                         piece.points.push_back(cell->vertex(v)[d]);

@@ -34,9 +34,9 @@ namespace anvil::Postprocess
     void end_of_run(const double wall_time) override
     {
       // The memory the mesh and the solver's state hold on all processes
-      // (deal.II's own accounting for the triangulation with its p4est
-      // forest, the DoF handler and the nodal vectors; the element groups'
-      // arrays): what an element costs beyond the executable.
+      // (deal.II's own accounting for the triangulation, the DoF handler
+      // and the nodal vectors; the element groups' arrays): what an element
+      // costs beyond the executable.
       double memory[4] = {double(get_triangulation().memory_consumption()),
                           double(get_dof_handler().memory_consumption()),
                           double(get_reference_position().memory_consumption() +

@@ -65,7 +65,7 @@ namespace anvil
     return simulator.gravity;
   }
 
-  const dealii::parallel::distributed::Triangulation<3> &SimulatorAccess::get_triangulation() const
+  const dealii::parallel::fullydistributed::Triangulation<3> &SimulatorAccess::get_triangulation() const
   {
     return simulator.triangulation;
   }
@@ -73,6 +73,11 @@ namespace anvil
   const dealii::DoFHandler<3> &SimulatorAccess::get_dof_handler() const
   {
     return simulator.dof_handler;
+  }
+
+  unsigned int SimulatorAccess::scene_vertex_index(const unsigned int v) const
+  {
+    return simulator.scene_vertex[v];
   }
 
   const std::vector<Element::ElementGroup> &SimulatorAccess::get_element_groups() const

@@ -20,7 +20,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/distributed/tria.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/la_parallel_vector.h>
@@ -214,8 +214,9 @@ namespace anvil
         check() and print_cost(). */
     void setup();
     void make_grid();
-    /** Repartition the cells by their cost per step (setup.cc). */
-    void partition_by_cost();
+    /** The owner of each cell of the scene's whole mesh @p serial, by the
+        cells' cost per step (setup.cc). */
+    void partition_by_cost(dealii::Triangulation<3> &serial) const;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
@@ -394,7 +395,9 @@ namespace anvil
     std::vector<std::unique_ptr<ForceContributor>> families;
 
     // Discretisation
-    dealii::parallel::distributed::Triangulation<3> triangulation;
+    dealii::parallel::fullydistributed::Triangulation<3> triangulation;
+    /** The scene's index of each vertex the process holds (make_grid). */
+    std::vector<unsigned int> scene_vertex;
     dealii::FESystem<3>                             fe;
     dealii::DoFHandler<3>                           dof_handler;
     /** The solid bodies: the element groups (a family, evaluated first). */

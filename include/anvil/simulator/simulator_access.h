@@ -11,7 +11,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/distributed/tria.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/la_parallel_vector.h>
@@ -57,9 +57,13 @@ namespace anvil
     const dealii::Tensor<1, 3>       &get_gravity() const;
 
     // The discretisation and the nodal state (ghost entries included)
-    const dealii::parallel::distributed::Triangulation<3> &get_triangulation() const;
-    const dealii::DoFHandler<3>                           &get_dof_handler() const;
+    const dealii::parallel::fullydistributed::Triangulation<3> &get_triangulation() const;
+    const dealii::DoFHandler<3>                                &get_dof_handler() const;
     const std::vector<Element::ElementGroup>              &get_element_groups() const;
+    /** The scene's index of this process's vertex @p v (the triangulation
+        numbers the vertices a process holds from 0): the same node on any
+        number of processes. */
+    unsigned int scene_vertex_index(unsigned int v) const;
     const VectorType &get_reference_position() const;
     const VectorType &get_position() const;
     const VectorType &get_velocity() const;
