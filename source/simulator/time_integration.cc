@@ -57,8 +57,12 @@ namespace anvil
     const auto start   = std::chrono::steady_clock::now();
     double     dt_crit = solids->add_forces(dt_previous);
     if (record_element_balance)
-      element_loop_seconds.push_back(
-        std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count());
+      {
+        element_loop_seconds.push_back(
+          std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count());
+        if (element_loop_seconds.size() == 4096)
+          reduce_element_balance();
+      }
     t.stop();
     for (auto &family : families)
       if (!family->empty() && family->has_forces())
@@ -659,6 +663,7 @@ namespace anvil
     // (The element loop's balance: this run's steps only.)
     record_element_balance = print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
     element_loop_seconds.clear();
+    element_balance = {};
     const auto   wall_start    = std::chrono::steady_clock::now();
     const double time_start    = time;
     double      &dt_previous   = loop.dt_previous;
@@ -862,8 +867,9 @@ namespace anvil
   // more work all along), and what is left, the work moving between the
   // processes step by step (the cracking concrete under a hammer, a host
   // core slowed for a while). Both are printed with the wall-time
-  // statistics; one reduction of the step-by-step times at the end.
-  void Simulator::print_element_balance() const
+  // statistics. The step-by-step times are reduced over the processes
+  // every 4096 steps (two reductions then, none in the other steps).
+  void Simulator::reduce_element_balance()
   {
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
     const unsigned int  steps   = Utilities::MPI::min(static_cast<unsigned int>(element_loop_seconds.size()),
@@ -872,14 +878,24 @@ namespace anvil
     std::vector<double> slowest(steps), total(steps);
     Utilities::MPI::max(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(slowest));
     Utilities::MPI::sum(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(total));
-    double own = 0, by_step = 0, mean = 0;
     for (unsigned int s = 0; s < steps; ++s)
       {
-        own += mine[s];
-        by_step += slowest[s];
-        mean += total[s] / n_ranks;
+        element_balance.own += mine[s];
+        element_balance.slowest_by_step += slowest[s];
+        element_balance.mean += total[s] / n_ranks;
       }
-    const double whole_run = Utilities::MPI::max(own, mpi_communicator);
+    element_balance.steps += steps;
+    element_loop_seconds.clear();
+  }
+
+
+  void Simulator::print_element_balance()
+  {
+    reduce_element_balance();
+    const double whole_run = Utilities::MPI::max(element_balance.own, mpi_communicator);
+    const double by_step   = element_balance.slowest_by_step;
+    const double mean      = element_balance.mean;
+    const auto   steps     = element_balance.steps;
     if (steps == 0 || !(mean > 0))
       return;
     pcout << std::fixed << std::setprecision(3) << "  element loop over " << steps

@@ -296,12 +296,19 @@ namespace anvil
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
     /** With 'Print wall times' on several processes: the wall time of each
-        step's element loop on this process (this run's steps), and what
+        step's element loop on this process, reduced over the processes
+        every 4096 steps into the sums below (this run's steps), and what
         the ranks lose waiting for the slowest one, printed at the end
         (print_element_balance()). */
     std::vector<float> element_loop_seconds;
     bool               record_element_balance = false;
-    void               print_element_balance() const;
+    struct
+    {
+      unsigned long steps = 0;
+      double        own = 0, slowest_by_step = 0, mean = 0;
+    } element_balance;
+    void reduce_element_balance();
+    void print_element_balance();
     void   apply_contact(double dt_previous);
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
