@@ -14,6 +14,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -110,7 +111,8 @@ namespace anvil
       {
         std::ostringstream info;
         info << "processes " << Utilities::MPI::n_mpi_processes(mpi_communicator) << "\ntime "
-             << std::setprecision(17) << time << "\nstep " << step_number << "\n";
+             << std::setprecision(17) << time << "\nstep " << step_number << "\nlayout "
+             << checkpoint_layout << "\n";
         write_atomically(dir + ".new/info", info.str());
         // The previous checkpoint goes only once the new one is complete.
         std::error_code ec;
@@ -144,17 +146,29 @@ namespace anvil
   }
 
 
+  // The state is stored per process in the order of its elements and
+  // nodes: 'layout' names that order (1, unstated: element ids in p4est's
+  // tree order; 2: the scene's cell order, the fully distributed mesh). A
+  // checkpoint of another layout would load its state onto other elements.
   void Simulator::check_checkpoint(const std::string &dir) const
   {
-    int n = -1;
+    int n = -1, layout = 1;
     if (std::ifstream info(dir + "/info"); info)
       {
         std::string word;
         info >> word >> n;
+        for (std::string key, value; info >> key >> value;)
+          if (key == "layout")
+            layout = std::atoi(value.c_str());
       }
     if (n < 0)
       throw InputError(scene_file + ": --resume: no checkpoint in '" + dir +
                        "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
+    if (layout != checkpoint_layout)
+      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' has state layout " +
+                       std::to_string(layout) + " (written by an earlier Anvil, whose elements were in " +
+                       "another order); this build reads layout " + std::to_string(checkpoint_layout) +
+                       ": run the scene again from its start");
     if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
       throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
                        std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));

@@ -9,10 +9,13 @@ supports: every kind of state Anvil carries), 12 ms.
 - np = 2: SIGTERM to the run writes a checkpoint and stops it with one line
   saying how to resume; the resumed run equals the uninterrupted np = 2 run
   byte for byte.
-- Resuming on another number of processes, without a checkpoint, or with
-  a changed scene stops with one line (exit 2).
+- Resuming on another number of processes, without a checkpoint, with
+  a changed scene, or from a checkpoint of an earlier state layout (its
+  info without the 'layout' line: the element order before the fully
+  distributed mesh) stops with one line (exit 2).
 """
 import os
+import shutil
 import signal
 import subprocess
 import time
@@ -105,8 +108,17 @@ p.send_signal(signal.SIGTERM)
 out, err = p.communicate()
 c.check_true("SIGTERM on one process: exit status 5", p.returncode == 5, err.strip())
 
-# Resuming wrongly: one line, exit 2.
+# Resuming wrongly: one line, exit 2. (A checkpoint of the layout before
+# the current one: term1's with the 'layout' line taken out of its info.)
+old = os.path.join(work, "output", "old_layout", "checkpoint")
+shutil.rmtree(os.path.dirname(old), ignore_errors=True)
+shutil.copytree(os.path.join(work, "output", "term1", "checkpoint"), old)
+with open(os.path.join(old, "info")) as fh:
+    info = [l for l in fh if not l.startswith("layout")]
+with open(os.path.join(old, "info"), "w") as fh:
+    fh.writelines(info)
 for label, cmd, words in (
+        ("from an earlier state layout", command("old_layout", resume=True), ["layout 1", "run the scene again"]),
         ("on another number of processes", command("term", np=1, resume=True), ["written by 2", "-np 2"]),
         ("without a checkpoint", command("nothing", resume=True), ["no checkpoint"]),
         ("with a changed mesh", command("term1", resume=True, extra=["--set", "Body column/Mesh/Subdivisions=6, 6, 60"]),

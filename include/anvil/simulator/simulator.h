@@ -217,6 +217,8 @@ namespace anvil
     /** The owner of each cell of the scene's whole mesh @p serial, by the
         cells' cost per step (setup.cc). */
     void partition_by_cost(dealii::Triangulation<3> &serial) const;
+    /** The order of a checkpoint's state (check_checkpoint()). */
+    static constexpr int checkpoint_layout = 2;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
