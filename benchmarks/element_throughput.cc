@@ -64,9 +64,8 @@ namespace
     MaterialModel::PlasticKinematicLaw law;
     law.sigma_0         = steel_yield;
     law.plastic_modulus = 206e9 * 1.2e9 / (206e9 - 1.2e9);
-    law.rate_effects    = rate;
-    law.C               = 40;
-    law.p               = 5;
+    if (rate)
+      law.set_cowper_symonds(40, 5);
     plastic.set(7850., 2.06e11, 0.3, law, false);
     // Concrete: the seed's column concrete (f'c = 45.4 MPa, MC2010 curves);
     // the velocity field (strain rates ~10 1/s) passes f_t / E after about

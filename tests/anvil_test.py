@@ -304,12 +304,13 @@ def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
 
 
 def steel_box_body(name, lower, upper, subdivisions, erosion=False):
-    """A box body of the seed's Table 1 steel (plastic kinematic), with
-    failure and erosion if asked."""
+    """A box body of the seed's Table 1 steel (plastic kinematic, rate-free),
+    with failure and erosion if asked."""
     return box_body(name, lower, upper, subdivisions, f"""  subsection Material
     set Model = plastic kinematic
     subsection plastic kinematic
       set Preset = Table 1 steel
+      set Strain rate effects = none
       set Erosion = {'true' if erosion else 'false'}
     end
   end

@@ -4,6 +4,7 @@
  */
 #include <anvil/element/solid_bodies.h>
 #include <anvil/simulator/simulator.h>
+#include <anvil/utilities/text.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -267,6 +268,7 @@ namespace anvil::Element
   std::string SolidBodies::describe() const
   {
     std::set<unsigned int> deformable, bulk, rate, erosion;
+    std::set<std::string>  laws;
     for (unsigned int g = 0; g < element_groups.size(); ++g)
       {
         const auto &group = element_groups[g];
@@ -276,7 +278,10 @@ namespace anvil::Element
         if (group.bulk_viscosity())
           bulk.insert(body_of_group[g]);
         if (group.get_material().rate_dependent())
-          rate.insert(body_of_group[g]);
+          {
+            rate.insert(body_of_group[g]);
+            laws.insert(group.get_material().rate_law());
+          }
         if (group.get_material().erodes())
           erosion.insert(body_of_group[g]);
       }
@@ -288,6 +293,7 @@ namespace anvil::Element
     std::ostringstream s;
     s << "elements of " << deformable.size() << " bod" << (deformable.size() == 1 ? "y" : "ies") << "; "
       << count(bulk.size(), "bulk viscosity", "body") << "; " << count(rate.size(), "rate effects", "body")
+      << (laws.empty() ? "" : " (" + join(laws) + ")")
       << "; " << count(erosion.size(), "erosion", "body");
     return s.str();
   }

@@ -11,7 +11,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iomanip>
 #include <map>
+#include <sstream>
+#include <stdexcept>
 
 namespace anvil::MaterialModel
 {
@@ -68,11 +71,114 @@ namespace anvil::MaterialModel
   } // namespace
 
 
+  void PlasticKinematicLaw::set_cowper_symonds(const double C_, const double p_)
+  {
+    rate_law     = RateLaw::cowper_symonds;
+    rate_effects = true;
+    C            = C_;
+    p            = p_;
+  }
+
+
+  // Malvar (1998), the yield stress's fit: alpha_fy = 0.074 - 0.040 f_y /
+  // 60 ksi, with 60 ksi = 413.7 MPa; the reference rate of the quasi-static
+  // tests is 1e-4 1/s, below which the factor stays 1.
+  void PlasticKinematicLaw::set_malvar_crawford()
+  {
+    const double a = 0.074 - 0.040 * sigma_0 / 413.7e6;
+    if (!(a > 0))
+      throw std::invalid_argument("Malvar and Crawford's exponent 0.074 - 0.040 f_y / 413.7 MPa "
+                                  "is not positive for f_y = " +
+                                  std::to_string(sigma_0 / 1e6) + " MPa");
+    rate_law     = RateLaw::malvar_crawford;
+    rate_effects = true;
+    alpha        = a;
+  }
+
+
   double PlasticKinematicLaw::rate_factor(const double rate) const
   {
-    if (!rate_effects || !(rate > 0))
+    if (!(rate > 0))
       return 1.;
-    return 1. + std::pow(rate / C, 1. / p);
+    switch (rate_law)
+      {
+        case RateLaw::cowper_symonds:
+          return 1. + std::pow(rate / C, 1. / p);
+        case RateLaw::malvar_crawford:
+          return rate > 1e-4 ? std::pow(rate / 1e-4, alpha) : 1.;
+        case RateLaw::none:
+          break;
+      }
+    return 1.;
+  }
+
+
+  double PlasticKinematicLaw::rate_dependent_increment(const double q_trial,
+                                                       const double eps_p,
+                                                       const double dt,
+                                                       const double elastic_term,
+                                                       double      &R) const
+  {
+    R               = 1.;
+    const double d0 = plastic_increment(q_trial, eps_p, 1., elastic_term);
+    if (d0 == 0. || !rate_effects || !(dt > 0))
+      return d0;
+    // g(d) = q_trial - K d - R(d / dt) sigma(d), decreasing in d, with
+    // g(0) > 0 (beyond the static yield stress) and g(d0) <= 0 (R >= 1):
+    // the root lies in [0, d0].
+    const double K = elastic_term + (1. - beta) * plastic_modulus;
+    auto g = [&](const double d, double &slope) {
+      const double rate = d / dt;
+      double       Rd = 1., dR = 0.;
+      if (rate_law == RateLaw::cowper_symonds && rate > 0)
+        {
+          const double x = std::pow(rate / C, 1. / p);
+          Rd             = 1. + x;
+          dR             = x / (p * rate);
+        }
+      else if (rate_law == RateLaw::malvar_crawford && rate > 1e-4)
+        {
+          Rd = std::pow(rate / 1e-4, alpha);
+          dR = alpha * Rd / rate;
+        }
+      const double sy = sigma_0 + beta * plastic_modulus * (eps_p + d);
+      slope           = -K - dR / dt * sy - Rd * beta * plastic_modulus;
+      return q_trial - K * d - Rd * sy;
+    };
+    double lo = 0., hi = d0, d = d0;
+    for (unsigned int it = 0; it < 100; ++it)
+      {
+        double       slope;
+        const double gd = g(d, slope);
+        (gd > 0 ? lo : hi) = d;
+        double next = d - gd / slope;
+        if (!(next > lo && next < hi))
+          next = 0.5 * (lo + hi);
+        const bool done = std::abs(next - d) <= 1e-14 * d0 || hi - lo <= 1e-14 * d0;
+        d               = next;
+        if (done)
+          break;
+      }
+    R = rate_factor(d / dt);
+    return d;
+  }
+
+
+  std::string PlasticKinematicLaw::describe_rate_law() const
+  {
+    std::ostringstream s;
+    switch (rate_law)
+      {
+        case RateLaw::cowper_symonds:
+          s << "Cowper-Symonds (C = " << C << " 1/s, p = " << p << ")";
+          break;
+        case RateLaw::malvar_crawford:
+          s << "Malvar-Crawford (alpha = " << std::setprecision(4) << alpha << ")";
+          break;
+        case RateLaw::none:
+          break;
+      }
+    return s.str();
   }
 
 
@@ -96,11 +202,23 @@ namespace anvil::MaterialModel
                         std::string(e[1]) +
                           " Empty: the preset's value.");
     prm.declare_entry("Strain rate effects",
-                      "false",
-                      Patterns::Bool(),
-                      "Scale the yield stress by the Cowper-Symonds factor "
-                      "of the effective total strain rate sqrt(2/3 D':D'). "
-                      "Off: no rate is computed.");
+                      "auto",
+                      Patterns::Selection("auto|none|Cowper-Symonds|Malvar-Crawford|true|false"),
+                      "Which law scales the yield stress with the effective "
+                      "total strain rate sqrt(2/3 D':D'). 'auto': "
+                      "Cowper-Symonds whenever 'Cowper-Symonds C' and "
+                      "'Cowper-Symonds p' are given and positive (by the "
+                      "scene or the preset), none otherwise, as LS-DYNA's "
+                      "*MAT_PLASTIC_KINEMATIC does with SRC and SRP. "
+                      "'Cowper-Symonds': 1 + (eps_dot / C)^(1/p) (seed Eq. "
+                      "(63)). 'Malvar-Crawford': the dynamic increase factor "
+                      "of reinforcing bars, (eps_dot / 1e-4 1/s)^alpha, "
+                      "alpha = 0.074 - 0.040 sigma_0 / 414 MPa, at least 1 "
+                      "(Malvar 1998; fitted to bars of 290-710 MPa). 'none': "
+                      "no rate is computed. 'true' and 'false' are the "
+                      "earlier spellings of 'Cowper-Symonds' and 'none'. The "
+                      "run's summary of its step names the law that acts. "
+                      "Units: none.");
     prm.declare_entry("Erosion",
                       "false",
                       Patterns::Bool(),
@@ -165,11 +283,34 @@ namespace anvil::MaterialModel
     if (l.beta < 0 || l.beta > 1)
       throw InputError("subsection 'plastic kinematic': entry 'Hardening "
                        "parameter beta' must lie in [0, 1]");
-    l.rate_effects = prm.get_bool("Strain rate effects");
-    if (l.rate_effects)
+    // Whether an entry has a value, from the scene or the preset.
+    auto given = [&](const std::string &entry) {
+      return !dealii::Utilities::trim(prm.get(entry)).empty() || preset != "none";
+    };
+    std::string rate = prm.get("Strain rate effects");
+    if (rate == "true")
+      rate = "Cowper-Symonds";
+    else if (rate == "false")
+      rate = "none";
+    else if (rate == "auto")
+      rate = given("Cowper-Symonds C") && given("Cowper-Symonds p") &&
+                 value("Cowper-Symonds C") > 0 && value("Cowper-Symonds p") > 0 ?
+               "Cowper-Symonds" :
+               "none";
+    if (rate == "Cowper-Symonds")
+      l.set_cowper_symonds(positive("Cowper-Symonds C"), positive("Cowper-Symonds p"));
+    else if (rate == "Malvar-Crawford")
       {
-        l.C = positive("Cowper-Symonds C");
-        l.p = positive("Cowper-Symonds p");
+        try
+          {
+            l.set_malvar_crawford();
+          }
+        catch (const std::invalid_argument &e)
+          {
+            throw InputError("subsection 'plastic kinematic': entry 'Strain rate effects' = "
+                             "'Malvar-Crawford': " + std::string(e.what()) +
+                             " (the law is fitted to bars of 290-710 MPa)");
+          }
       }
     const bool erode = prm.get_bool("Erosion");
     l.failure_strain = erode ? positive("Failure strain") : 0.;
@@ -219,15 +360,6 @@ namespace anvil::MaterialModel
     for (unsigned int k = 3; k < 6; ++k)
       s[k] += 2. * mu * D[k] * dt;
 
-    double R = 1.;
-    if (law.rate_effects)
-      {
-        const double d3 = tr / 3.;
-        const double dd = (D[0] - d3) * (D[0] - d3) + (D[1] - d3) * (D[1] - d3) +
-                          (D[2] - d3) * (D[2] - d3) +
-                          2. * (D[3] * D[3] + D[4] * D[4] + D[5] * D[5]);
-        h[8] = std::sqrt(2. / 3. * dd);
-      }
 
     const double p = (s[0] + s[1] + s[2]) / 3.;
     double       xi[6];
@@ -236,10 +368,12 @@ namespace anvil::MaterialModel
     const double xx = xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
                       2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5]);
     const double q = std::sqrt(1.5 * xx);
-    // As in the batch: the rate factor only beyond the static yield stress.
-    if (law.rate_effects && q > law.yield_stress(h[6], 1.))
-      R = law.rate_factor(h[8]);
-    const double dep = law.plastic_increment(q, h[6], R, 3. * mu);
+    // As in the batch: the same return for the same inputs.
+    double       R;
+    const double dep = law.rate_effects ? law.rate_dependent_increment(q, h[6], dt, 3. * mu, R) :
+                                          law.plastic_increment(q, h[6], 1., 3. * mu);
+    if (law.rate_effects)
+      h[8] = dt > 0 ? dep / dt : 0.;
     if (dep == 0.)
       return;
     const double norm = std::sqrt(xx);
@@ -267,7 +401,7 @@ namespace anvil::MaterialModel
     constexpr unsigned int W = batch_size;
     // The history (back stress, eps_p, plastic work, rate) into lanes.
     // (The whole history is hot: n_hot_history() is n_history().)
-    alignas(64) double alpha[6][W], eps_p[W], work[W], rate[W], R[W];
+    alignas(64) double alpha[6][W], eps_p[W], work[W], rate[W];
     for (unsigned int k = 0; k < 6; ++k)
       history.load(k, alpha[k]);
     history.load(6, eps_p);
@@ -301,17 +435,7 @@ namespace anvil::MaterialModel
           s[k][l] += (lambda * tr + 2. * mu * D[k][l]) * dt;
         for (unsigned int k = 3; k < 6; ++k)
           s[k][l] += 2. * mu * D[k][l] * dt;
-        R[l] = 1.;
       }
-    if (law.rate_effects)
-      for (unsigned int l = 0; l < W; ++l)
-        {
-          const double d3 = (D[0][l] + D[1][l] + D[2][l]) / 3.;
-          const double dd = (D[0][l] - d3) * (D[0][l] - d3) + (D[1][l] - d3) * (D[1][l] - d3) +
-                            (D[2][l] - d3) * (D[2][l] - d3) +
-                            2. * (D[3][l] * D[3][l] + D[4][l] * D[4][l] + D[5][l] * D[5][l]);
-          rate[l] = std::sqrt(2. / 3. * dd);
-        }
     const double Hk = law.kinematic_modulus();
     // The relative stress xi = dev(sigma) - alpha of the trial, and its
     // von Mises norm.
@@ -324,31 +448,45 @@ namespace anvil::MaterialModel
         norm[l] = std::sqrt(xi[0][l] * xi[0][l] + xi[1][l] * xi[1][l] + xi[2][l] * xi[2][l] +
                             2. * (xi[3][l] * xi[3][l] + xi[4][l] * xi[4][l] + xi[5][l] * xi[5][l]));
       }
-    // The rate factor (a pow) only where the trial stress is beyond the
-    // static yield stress: R >= 1, so a point within it is elastic at any
-    // rate, and the elastic range pays no rate effects.
-    if (law.rate_effects)
-      for (unsigned int l = 0; l < W; ++l)
-        if (std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], 1.))
-          R[l] = law.rate_factor(rate[l]);
-    // A batch whose trial stresses are all within the yield surface keeps
-    // them (the return below would change nothing: dep = 0).
+    // A batch whose trial stresses are all within the static yield surface
+    // keeps them (the return below would change nothing: dep = 0; R >= 1,
+    // so a point within it is elastic at any rate, and the elastic range
+    // pays no rate effects).
     std::uint64_t any_plastic = 0;
     for (unsigned int l = 0; l < W; ++l)
-      flag[l] = std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], R[l]) ? 1 : 0;
+      flag[l] = std::sqrt(1.5) * norm[l] > law.yield_stress(eps_p[l], 1.) ? 1 : 0;
     for (unsigned int l = 0; l < W; ++l)
       any_plastic |= flag[l];
+    if (law.rate_effects)
+      for (unsigned int l = 0; l < W; ++l)
+        rate[l] = 0.;
     if (any_plastic != 0)
       {
         // The radial return of every lane at once (dep = 0 leaves an
         // elastic lane's stress, back stress and work as they are), in
         // loops over the lanes that vectorise.
-        alignas(64) double a[W], b[W], c[W];
+        // With rate effects the increment of each plastic lane comes from
+        // the rate-dependent return (an iteration), the same function as
+        // the single point's; rate-free, from the linear consistency
+        // condition across the lanes.
+        alignas(64) double a[W], b[W], c[W], increment[W];
+        if (law.rate_effects)
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              double R;
+              increment[l] =
+                flag[l] != 0 ? law.rate_dependent_increment(std::sqrt(1.5) * norm[l], eps_p[l], dt, 3. * mu, R) : 0.;
+              rate[l] = dt > 0 ? increment[l] / dt : 0.;
+            }
+        else
+          for (unsigned int l = 0; l < W; ++l)
+            {
+              const double excess = std::sqrt(1.5) * norm[l] - law.yield_stress(eps_p[l], 1.);
+              increment[l]        = excess > 0 ? excess / (3. * mu + Hk + law.beta * law.plastic_modulus) : 0.;
+            }
         for (unsigned int l = 0; l < W; ++l)
           {
-            const double excess = std::sqrt(1.5) * norm[l] - law.yield_stress(eps_p[l], R[l]);
-            const double dep =
-              excess > 0 ? excess / (3. * mu + Hk + R[l] * law.beta * law.plastic_modulus) : 0.;
+            const double dep = increment[l];
             const double inv = norm[l] > 0 ? 1. / norm[l] : 0.;
             a[l]             = 2. * mu * std::sqrt(1.5) * dep * inv;
             b[l]             = std::sqrt(2. / 3.) * Hk * dep * inv;
@@ -392,9 +530,9 @@ namespace anvil::MaterialModel
   {
     const double E       = youngs_modulus();
     const double s_trial = stress + E * d_eps;
-    const double R       = law.rate_effects && dt > 0 ? law.rate_factor(std::abs(d_eps) / dt) : 1.;
     const double xi      = s_trial - h[0];
-    const double dep     = law.plastic_increment(std::abs(xi), h[1], R, E);
+    double       R;
+    const double dep     = law.rate_dependent_increment(std::abs(xi), h[1], dt, E, R);
     if (dep == 0.)
       return s_trial;
     const double sign = xi > 0 ? 1. : -1.;

@@ -7,6 +7,7 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/vtu_file.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/text.h>
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/utilities.h>
@@ -20,6 +21,7 @@
 #include <iomanip>
 #include <sstream>
 #include <map>
+#include <set>
 
 namespace anvil::Rebar
 {
@@ -1140,12 +1142,23 @@ namespace anvil::Rebar
     std::size_t trusses = 0;
     for (const auto &r : bars)
       trusses += r.elements.size();
-    unsigned int subcycled = 0;
+    unsigned int          subcycled = 0, rate = 0;
+    std::set<std::string> laws;
     for (const auto &layout : layouts)
-      subcycled += layout.subcycling;
+      {
+        subcycled += layout.subcycling;
+        if (layout.material->rate_dependent())
+          {
+            ++rate;
+            laws.insert(layout.material->rate_law());
+          }
+      }
     return std::to_string(trusses) + " bar elements in " + std::to_string(bars.size()) + " rebar set" +
            (bars.size() == 1 ? "" : "s") +
-           (subcycled == 0 ? "" : " (" + std::to_string(subcycled) + " subcycled in substeps of their own stable step)");
+           (subcycled == 0 ? "" : " (" + std::to_string(subcycled) + " subcycled in substeps of their own stable step)") +
+           (rate == 0 ? "; no rate effects in bars" :
+                        "; rate effects in " + std::to_string(rate) + " of " + std::to_string(layouts.size()) +
+                          " rebar sets (" + join(laws) + ")");
   }
 
 

@@ -44,6 +44,7 @@ subsection Body bar
     set Model = plastic kinematic
     subsection plastic kinematic
       set Preset = Table 1 steel
+      set Strain rate effects = none
       set Erosion = true
     end
   end

@@ -16,6 +16,12 @@ driven by 'anvil --material-point', against closed forms.
   beta = 1; tolerance 1 %, the reversal located within one increment.
 - Plastic dissipation over a closed cycle (0.02 -> -0.02 -> 0.02, beta = 0)
   equals the loop area  oint sigma d eps within 1 %.
+- Which rate law acts ('Strain rate effects'): 'auto' with the preset's C
+  and p gives the Cowper-Symonds closed form at 40 1/s (as LS-DYNA's
+  MAT_003 with SRC and SRP given); 'auto' with C and p left empty (no
+  preset) gives the rate-free one at 400 1/s; 'Malvar-Crawford' gives
+  R = max(1, (eps_dot / 1e-4)^alpha), alpha = 0.074 - 0.040 sigma_0 /
+  413.7 MPa, at 1e-5 (R = 1), 1, 40 and 400 1/s, tolerance 1 %.
 """
 from anvil_test import Checker, arguments, run_material_point
 
@@ -27,13 +33,22 @@ Ep = E * Et / (E - Et)
 
 
 def drive(name, mode="uniaxial stress", rate=1.0, path="0.05", inc="1e-4",
-          formulation="updated Lagrangian", rate_effects=True, beta=0.0):
+          formulation="updated Lagrangian", rate_effects=True, beta=0.0, law=None, preset=True):
+    if law is None:
+        law = "Cowper-Symonds" if rate_effects else "none"
+    # Without the preset, every entry but C and p is given.
+    entries = "set Preset = Table 1 steel" if preset else f"""set Density = 7850
+    set Young's modulus = {E}
+    set Poisson's ratio = {nu}
+    set Yield stress = {s0}
+    set Tangent modulus = {Et}
+    set Failure strain = 0.12"""
     material = f"""subsection Material
   set Model = plastic kinematic
   subsection plastic kinematic
-    set Preset = Table 1 steel
+    {entries}
     set Hardening parameter beta = {beta}
-    set Strain rate effects = {'true' if rate_effects else 'false'}
+    set Strain rate effects = {law}
   end
 end"""
     return run_material_point(c, args, name, material, Mode=mode, Formulation=formulation,
@@ -94,4 +109,19 @@ first = next(i for i in range(len(eps)) if abs(eps[i] - 0.02) < 1e-12)
 area = sum(0.5 * (sig[i] + sig[i + 1]) * (eps[i + 1] - eps[i]) for i in range(first, len(eps) - 1))
 c.check("closed cycle: stress at the two peaks [Pa]", sig[-1], sig[first], 1e-3, relative=True)
 c.check("closed cycle: plastic dissipation / loop area", wp[-1] - wp[first], area, 0.01, relative=True)
+
+# Which rate law acts.
+d = drive("auto_preset", rate=40.0, law="auto")
+c.check("'auto' with the preset's C and p, 40 1/s: flow stress at 5 % (Cowper-Symonds) [Pa]",
+        d["stress_xx"][-1], closed_form(0.05, 40.0, 0.0), 0.01, relative=True)
+d = drive("auto_no_constants", rate=400.0, law="auto", preset=False)
+c.check("'auto' without C and p, 400 1/s: flow stress at 5 % (rate-free) [Pa]",
+        d["stress_xx"][-1], closed_form(0.05, 400.0, 0.0, rate_effects=False), 0.01, relative=True)
+alpha = 0.074 - 0.040 * s0 / 413.7e6
+for rate in (1e-5, 1.0, 40.0, 400.0):
+    d = drive(f"malvar_crawford_{rate:g}", rate=rate, law="Malvar-Crawford",
+              inc="1e-4" if rate >= 1 else "1e-3")
+    R = max(1.0, (rate / 1e-4) ** alpha)
+    c.check(f"Malvar-Crawford, {rate:g} 1/s (R = {R:.3f}): flow stress at 5 % [Pa]",
+            d["stress_xx"][-1], (R * s0 + Ep * 0.05) / (1 + Ep / E), 0.01, relative=True)
 c.finish()

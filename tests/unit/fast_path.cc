@@ -39,9 +39,7 @@ int main()
   law.sigma_0         = 1e7;
   law.plastic_modulus = 1e9;
   law.beta            = 0.5;
-  law.rate_effects    = true;
-  law.C               = 40;
-  law.p               = 5;
+  law.set_cowper_symonds(40, 5);
   plastic.set(7850., 2e11, 0.3, law, false);
   MaterialModel::ConcreteDamagedPlasticity             concrete;
   MaterialModel::ConcreteDamagedPlasticity::Parameters cp;

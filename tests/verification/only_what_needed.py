@@ -14,7 +14,12 @@ with their numbers of calls. Checked here:
   a force (its cost per element-cycle is
   printed, not asserted: benchmarks/scene_costs.py measures it);
 - the steel bar with and without rate effects: 'rate effects in 1 body' and
-  'no rate effects';
+  'no rate effects'; with 'Strain rate effects = auto' and the preset's C
+  and p the line names Cowper-Symonds with C = 40 1/s and p = 5, with
+  'Malvar-Crawford' it names that law;
+- the pull-out's bar (elastic) 'no rate effects in bars'; the coarse column's
+  bars (Table 1 steel, nothing said of rate effects) 'rate effects in 2 of 2
+  rebar sets (Cowper-Symonds';
 - the concrete pull-out: a 'rebar and bond' section entered once a step,
   no 'contact' section.
 """
@@ -129,10 +134,27 @@ no_rate = run("bar_no_rate", bar, short + """subsection Body bar
 end
 """)
 says("steel bar without rate effects", no_rate, "no rate effects")
+law = lambda name: short + f"""subsection Body bar
+  subsection Material
+    subsection plastic kinematic
+      set Strain rate effects = {name}
+    end
+  end
+end
+"""
+auto = run("bar_auto", bar, law("auto"))
+says("steel bar, 'auto' with the preset's C and p", auto,
+     "rate effects in 1 body (Cowper-Symonds (C = 40 1/s, p = 5))")
+malvar = run("bar_malvar", bar, law("Malvar-Crawford"))
+says("steel bar, 'Malvar-Crawford'", malvar, "rate effects in 1 body (Malvar-Crawford (alpha = 0.04161))")
 
 # Bars: their own section, entered once a step.
 bars = run("pull_out", pull, "subsection Simulation\n  set End time = 0.001\nend\n")
-says("pull-out", bars, "bar elements in 1 rebar set", "no contact")
+says("pull-out", bars, "bar elements in 1 rebar set", "no contact", "no rate effects in bars")
+column = os.path.join(src, "prm", "rc_column_impact", "rc_column_impact_coarse.prm")
+col = run("column", column, "subsection Simulation\n  set End time = 2e-5\nend\n")
+says("coarse column", col, "rate effects in 2 of 2 rebar sets (Cowper-Symonds (C = 40 1/s, p = 5))",
+     "concrete DIF")
 c.check_true("pull-out: 'rebar and bond' entered once a step (and once for the initial state)",
              bars["sections"].get("rebar and bond", (0, 0))[0] == int(bars["summary"]["steps"]) + 1,
              str(bars["sections"].get("rebar and bond")))

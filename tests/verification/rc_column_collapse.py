@@ -89,7 +89,7 @@ end
 """ + "".join(f"""subsection Rebar {layout}
   subsection Material
     subsection plastic kinematic
-      set Cowper-Symonds C = 1e30
+      set Strain rate effects = none
     end
   end
 end

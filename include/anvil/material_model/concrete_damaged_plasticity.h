@@ -291,6 +291,10 @@ namespace anvil::MaterialModel
     {
       return par.rate_effects;
     }
+    std::string rate_law() const override
+    {
+      return par.rate_effects ? "concrete DIF (seed Eqs. (64)-(67))" : "";
+    }
     bool point_failed(const double *history) const override;
     bool degrades() const override
     {

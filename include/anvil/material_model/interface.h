@@ -170,6 +170,14 @@ namespace anvil
         return false;
       }
 
+      /** The rate law that acts, with its constants, as the run's summary
+          of its step names it (e.g. "Cowper-Symonds, C = 40 1/s, p = 5");
+          empty when rate_dependent() is false. */
+      virtual std::string rate_law() const
+      {
+        return "";
+      }
+
       /** Whether the point with history @p history has failed. */
       virtual bool point_failed(const double *history) const
       {

@@ -8,14 +8,23 @@
 
 #include <anvil/material_model/rate_form_elastic.h>
 
+#include <string>
+
 namespace anvil::MaterialModel
 {
   /**
    * The hardening and rate law of seed Eq. (63), shared by the 3D material
    * point and the uniaxial (truss) form so that neither duplicates it:
    *
-   *   sigma_y = R(eps_dot) (sigma_0 + beta E_p eps_p),
-   *   R = 1 + (eps_dot / C)^(1/p),   E_p = E E_t / (E - E_t),
+   *   sigma_y = R(eps_dot) (sigma_0 + beta E_p eps_p),   E_p = E E_t / (E - E_t),
+   *
+   * with the rate factor R of one of two laws:
+   * - Cowper-Symonds (seed Eq. (63)): R = 1 + (eps_dot / C)^(1/p);
+   * - Malvar and Crawford's dynamic increase factor of the yield stress of
+   *   reinforcing bars (Malvar 1998, ACI Materials Journal 95(5)):
+   *   R = max(1, (eps_dot / 1e-4 1/s)^alpha), alpha = 0.074 - 0.040
+   *   sigma_0 / 414 MPa (sigma_0 / 60 ksi), fitted to bars of
+   *   290-710 MPa at 1e-4 to 225 1/s;
    *
    * with the back stress moving by (1 - beta) E_p per unit effective plastic
    * strain (Prager's rule). beta = 0 is kinematic, beta = 1 isotropic
@@ -26,13 +35,35 @@ namespace anvil::MaterialModel
     double sigma_0 = 0;
     double plastic_modulus = 0;
     double beta = 0;
-    bool   rate_effects = false;
-    double C = 0;
-    double p = 1;
+    /** The rate laws; rate_effects is (rate_law != none), kept for the
+        element loop's tests. */
+    enum class RateLaw
+    {
+      none,
+      cowper_symonds,
+      malvar_crawford
+    };
+    RateLaw rate_law     = RateLaw::none;
+    bool    rate_effects = false;
+    double  C = 0;
+    double  p = 1;
+    /** Malvar and Crawford's exponent alpha (from sigma_0). */
+    double alpha = 0;
     double failure_strain = 0;
 
-    /** Cowper-Symonds factor R of the effective strain rate @p rate. */
+    /** Set the Cowper-Symonds law (C, p > 0). */
+    void set_cowper_symonds(double C, double p);
+    /** Set Malvar and Crawford's law for the current sigma_0 (alpha > 0,
+        i.e. sigma_0 < 765 MPa; throws std::invalid_argument otherwise). */
+    void set_malvar_crawford();
+
+    /** Rate factor R of the effective strain rate @p rate (1 without rate
+        effects or at rate <= 0). */
     double rate_factor(const double rate) const;
+
+    /** The law acting, with its constants, for the run's summary ("" when
+        none). */
+    std::string describe_rate_law() const;
 
     /** Radius of the yield surface (in effective stress) at plastic
         strain @p eps_p and rate factor @p R. Units: Pa. */
@@ -60,6 +91,25 @@ namespace anvil::MaterialModel
                        R * beta * plastic_modulus);
     }
 
+    /**
+     * The same return with the rate factor of the effective plastic strain
+     * rate dep / dt of this very increment (the rate of ABAQUS's *Rate
+     * Dependent and of LS-DYNA's viscoplastic option VP = 1): the
+     * consistency condition
+     *   q_trial - (elastic_term + (1 - beta) E_p) dep
+     *     = R(dep / dt) (sigma_0 + beta E_p (eps_p + dep))
+     * is solved for dep by Newton's method inside the bracket [0, rate-free
+     * increment] (bisection where a step leaves it). R(0) = 1, so a point
+     * within the static yield stress is elastic at any rate. Rate-free
+     * (no rate law or dt = 0): plastic_increment with R = 1. Returns dep
+     * and sets @p R to the factor at the solution.
+     */
+    double rate_dependent_increment(double  q_trial,
+                                    double  eps_p,
+                                    double  dt,
+                                    double  elastic_term,
+                                    double &R) const;
+
     /** Back-stress modulus (1 - beta) E_p. Units: Pa. */
     double kinematic_modulus() const
     {
@@ -84,13 +134,18 @@ namespace anvil::MaterialModel
    *   different question.
    * - Uniaxial (truss): the same law in one dimension.
    *
-   * The rate entering R is the effective total strain rate
-   * sqrt(2/3 D':D') (LS-DYNA's default for this model, VP = 0): known
-   * before the return, so the return stays explicit, and equal to the
-   * plastic rate within (E_t/E) in plastic flow.
+   * The rate entering R is the effective plastic strain rate of the
+   * increment, dep / dt, solved with the return
+   * (PlasticKinematicLaw::rate_dependent_increment): ABAQUS's definition
+   * of the Cowper-Symonds overstress law, LS-DYNA's VP = 1. (The total
+   * strain rate known before the return, LS-DYNA's VP = 0, feeds the rate
+   * back explicitly: at the low rates of a bar yielding in a slow push the
+   * slope dR/d eps_dot is large, and the step of a 20 mm bar element is
+   * then hundreds of times too long for that feedback: doc/theory.md.)
    *
    * History per point: back stress (6), effective plastic strain,
-   * plastic work density, effective strain rate; total Lagrangian adds the
+   * plastic work density, effective plastic strain rate (with rate
+   * effects); total Lagrangian adds the
    * previous F - I (9) and the back stress is kept in the rotated frame
    * like the stress.
    *
@@ -117,7 +172,7 @@ namespace anvil::MaterialModel
       return {"back_stress_xx", "back_stress_yy", "back_stress_zz",
               "back_stress_xy", "back_stress_yz", "back_stress_xz",
               "effective_plastic_strain", "plastic_work_density",
-              "effective_strain_rate"};
+              "effective_plastic_strain_rate"};
     }
     int dissipation_index() const override
     {
@@ -138,6 +193,10 @@ namespace anvil::MaterialModel
     bool rate_dependent() const override
     {
       return law.rate_effects;
+    }
+    std::string rate_law() const override
+    {
+      return law.describe_rate_law();
     }
     bool point_failed(const double *history) const override
     {
