@@ -17,11 +17,13 @@
  * three times in turn, for A/B comparisons of builds; materials: the
  * elastic step and each material's ratio to it, five times in turn, and
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
- * steel-yielding, concrete-elastic, concrete-cracking alone, for profiling)
+ * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding
+ * alone, for profiling)
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
 #include <anvil/material_model/elastic.h>
+#include <anvil/material_model/johnson_cook.h>
 #include <anvil/material_model/plastic_kinematic.h>
 
 #include <sys/resource.h>
@@ -54,7 +56,8 @@ namespace
              const bool                     concrete    = false,
              const double                   velocity_scale = 1.,
              const bool                     reference   = false,
-             const double                   steel_yield = 1e5)
+             const double                   steel_yield = 1e5,
+             const bool                     johnson_cook = false)
   {
     // Elastic, or the seed's Table 1 steel with a yield stress low enough
     // that the block flows plastically from the first cycles.
@@ -78,7 +81,16 @@ namespace
     cp.rate_effects  = rate;
     cp.cube_strength = 45.4e6 / 0.8;
     concrete_model.set(cp);
+    // Johnson-Cook: the 42CrMo4 of the DynELA Taylor deck (rate term,
+    // thermal softening, adiabatic heating), its A replaced by steel_yield.
+    MaterialModel::JohnsonCook    jc_model;
+    MaterialModel::JohnsonCookLaw jc;
+    jc.A = steel_yield, jc.B = 614e6, jc.n = 0.168, jc.C = 0.0089, jc.reference_rate = 1.;
+    jc.m = 1.1, jc.melting_temperature = 1540., jc.transition_temperature = 20.;
+    jc.specific_heat = 460., jc.heat_fraction = 0.9;
+    jc_model.set(7830., 2.06e11, 0.3, jc, 20., false);
     const MaterialModel::Interface &material =
+      johnson_cook ? static_cast<const MaterialModel::Interface &>(jc_model) :
       concrete ? static_cast<const MaterialModel::Interface &>(concrete_model) :
       steel    ? static_cast<const MaterialModel::Interface &>(plastic) :
                  static_cast<const MaterialModel::Interface &>(elastic);
@@ -196,6 +208,16 @@ int main(int argc, char **argv)
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                Formulation::updated_lagrangian, false, true, true, 0.02);
   };
+  // Johnson-Cook below its yield stress (A = 806 MPa) and flowing from the
+  // first cycles (A = 0.1 MPa, the hardening B eps_p^n of the deck).
+  const auto jc_elastic = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, false, false, 0.2, false, 8.06e8, true);
+  };
+  const auto jc_yielding = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, true);
+  };
   // One case alone, for profiling (perf record) the material updates.
   if (argc > 3 && std::string(argv[3]) != "materials")
     {
@@ -204,6 +226,8 @@ int main(int argc, char **argv)
                                name == "steel-yielding"    ? steel_yielding(false) :
                                name == "concrete-elastic"  ? concrete_elastic() :
                                name == "concrete-cracking" ? concrete_cracking() :
+                               name == "jc-elastic"        ? jc_elastic() :
+                               name == "jc-yielding"       ? jc_yielding() :
                                name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
                                                    Result{-1., 0.};
       if (r.ns_per_element_cycle < 0)
@@ -211,7 +235,7 @@ int main(int argc, char **argv)
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
                        "elastic, steel-elastic, steel-yielding, concrete-elastic, "
-                       "concrete-cracking)\n",
+                       "concrete-cracking, jc-elastic, jc-yielding)\n",
                        name.c_str());
           return 1;
         }
@@ -222,23 +246,28 @@ int main(int argc, char **argv)
     {
       // Each round runs every case once; the fastest of the rounds is the
       // figure least disturbed by other work on the machine.
-      double best[5] = {1e300, 1e300, 1e300, 1e300, 1e300};
+      double best[7] = {1e300, 1e300, 1e300, 1e300, 1e300, 1e300, 1e300};
       for (unsigned int k = 0; k < 5; ++k)
         {
-          const double t[5] = {run(n, cycles, Element::Integration::one_point).ns_per_element_cycle,
+          const double t[7] = {run(n, cycles, Element::Integration::one_point).ns_per_element_cycle,
                                steel_elastic().ns_per_element_cycle,
                                steel_yielding(false).ns_per_element_cycle,
                                concrete_elastic().ns_per_element_cycle,
-                               concrete_cracking().ns_per_element_cycle};
-          for (unsigned int c = 0; c < 5; ++c)
+                               concrete_cracking().ns_per_element_cycle,
+                               jc_elastic().ns_per_element_cycle,
+                               jc_yielding().ns_per_element_cycle};
+          for (unsigned int c = 0; c < 7; ++c)
             best[c] = std::min(best[c], t[c]);
           std::printf("elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding %.2f, "
-                      "concrete elastic range %.2f, concrete cracking %.2f\n",
-                      t[0], t[1] / t[0], t[2] / t[0], t[3] / t[0], t[4] / t[0]);
+                      "concrete elastic range %.2f, concrete cracking %.2f, Johnson-Cook elastic range %.2f, "
+                      "Johnson-Cook yielding %.2f\n",
+                      t[0], t[1] / t[0], t[2] / t[0], t[3] / t[0], t[4] / t[0], t[5] / t[0], t[6] / t[0]);
         }
       std::printf("fastest of 5: elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding "
-                  "%.2f, concrete elastic range %.2f, concrete cracking %.2f\n",
-                  best[0], best[1] / best[0], best[2] / best[0], best[3] / best[0], best[4] / best[0]);
+                  "%.2f, concrete elastic range %.2f, concrete cracking %.2f, Johnson-Cook elastic range "
+                  "%.2f, Johnson-Cook yielding %.2f\n",
+                  best[0], best[1] / best[0], best[2] / best[0], best[3] / best[0], best[4] / best[0],
+                  best[5] / best[0], best[6] / best[0]);
       return 0;
     }
   const Result one  = run(n, cycles, Element::Integration::one_point);

@@ -2,7 +2,9 @@
 output, and report every check as 'measured / expected / tolerance'."""
 
 import argparse
+import bisect
 import csv
+import math
 import os
 import shutil
 import subprocess
@@ -175,6 +177,57 @@ def uniaxial_boundary_conditions(body, velocity):
                  f"  set Boundary ids = {bid}\n  set Components = {comp}\nend\n")
     return text + (f"subsection Boundary condition pull\n  set Body = {body}\n  set Boundary ids = 1\n"
                    f"  set Type = velocity\n  set Velocity = {velocity}, 0, 0\n  set Components = x\nend\n")
+
+
+def uniaxial_cube_scene(L, end_time, history_interval, material, body_entries="", top=""):
+    """Scene text of one hexahedron (edge L, body 'cube') in uniaxial stress
+    at the rate its x+ face is pulled: symmetry planes on the x-, y- and z-
+    faces, the x+ face moving at 'velocity' (give it through
+    uniaxial_boundary_conditions in 'top' or after), a probe 'corner' at
+    (L, L, L). 'material' is the body's 'subsection Material' text,
+    'body_entries' more entries of the body, 'top' text before the rest."""
+    return f"""{top}set Bodies = cube
+set Boundary conditions = sym_x, sym_y, sym_z, pull
+set Probes = corner
+subsection Simulation
+  set End time = {end_time}
+  set History interval = {history_interval}
+  set Print wall times = false
+end
+subsection Body cube
+  subsection Mesh
+    set Source = box
+    set Lower corner = 0, 0, 0
+    set Upper corner = {L}, {L}, {L}
+    set Subdivisions = 1, 1, 1
+  end
+{material}
+{body_entries}end
+subsection Probe corner
+  set Point = {L}, {L}, {L}
+end
+"""
+
+
+def deviation_from_driver(driver, probe, L):
+    """Largest |sigma_xx(element) - sigma_xx(driver)| over the driver's peak
+    |sigma_xx|, the driver's stress interpolated at the element's
+    logarithmic strain ln(1 + u_x / L), over the rows inside the driver's
+    strain range (tension or compression), and the element's final strain."""
+    strain = [math.log(1 + u / L) for u in probe["ux"]]
+    sign = 1.0 if driver["strain_xx"][-1] >= 0 else -1.0
+    es = [sign * e for e in driver["strain_xx"]]
+    ss = driver["stress_xx"]
+    peak = max(abs(s) for s in ss)
+    worst = 0.0
+    for e, s in zip(strain, probe["stress_xx"]):
+        i = bisect.bisect_left(es, sign * e)
+        if i == 0 or i >= len(es):
+            continue
+        e0, e1 = es[i - 1], es[i]
+        s_ref = ss[i - 1] + (sign * e - e0) / (e1 - e0) * (ss[i] - ss[i - 1])
+        worst = max(worst, abs(s - s_ref) / peak)
+    return worst, strain[-1]
 
 
 # Meshes for contact tests, written as ABAQUS .inp files (C3D8).

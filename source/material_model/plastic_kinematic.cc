@@ -5,6 +5,7 @@
 #include <anvil/kinematics/rotation.h>
 #include <anvil/kinematics/tensor3.h>
 #include <anvil/material_model/plastic_kinematic.h>
+#include <anvil/utilities/bracketed_newton.h>
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/utilities.h>
@@ -145,21 +146,8 @@ namespace anvil::MaterialModel
       slope           = -K - dR / dt * sy - Rd * beta * plastic_modulus;
       return q_trial - K * d - Rd * sy;
     };
-    double lo = 0., hi = d0, d = d0;
-    for (unsigned int it = 0; it < 100; ++it)
-      {
-        double       slope;
-        const double gd = g(d, slope);
-        (gd > 0 ? lo : hi) = d;
-        double next = d - gd / slope;
-        if (!(next > lo && next < hi))
-          next = 0.5 * (lo + hi);
-        const bool done = std::abs(next - d) <= 1e-14 * d0 || hi - lo <= 1e-14 * d0;
-        d               = next;
-        if (done)
-          break;
-      }
-    R = rate_factor(d / dt);
+    const double d = bracketed_newton(g, 0., d0, d0, 1e-14 * d0);
+    R              = rate_factor(d / dt);
     return d;
   }
 

@@ -13,7 +13,8 @@ against the exported CMake package and loaded at run time with
 import math
 import os
 import subprocess
-from anvil_test import Checker, arguments, build_plugin, read_csv, run_anvil, uniaxial_boundary_conditions, write_scene
+from anvil_test import (Checker, arguments, build_plugin, read_csv, run_anvil, uniaxial_boundary_conditions,
+                        uniaxial_cube_scene, write_scene)
 
 args = arguments()
 c = Checker("Johnson-Cook plugin (doc/extending.md)")
@@ -57,29 +58,9 @@ for rate in (1.0, 100.0):
 # The solver: one hexahedron at 100 1/s to 10 %.
 L, rate, target = 0.01, 100.0, 0.1
 end_time = (math.exp(target) - 1) / rate
-prm = write_scene(os.path.join(args.work_dir, "cube.prm"), text=f"""
-set Additional shared libraries = {library}
-set Bodies = cube
-set Boundary conditions = sym_x, sym_y, sym_z, pull
-set Probes = corner
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 1e-5
-  set Print wall times = false
-end
-subsection Body cube
-  subsection Mesh
-    set Upper corner = {L}, {L}, {L}
-    set Subdivisions = 1, 1, 1
-  end
-  subsection Material
-    set Model = Johnson-Cook
-  end
-end
-{uniaxial_boundary_conditions("cube", rate * L)}subsection Probe corner
-  set Point = {L}, {L}, {L}
-end
-""")
+prm = write_scene(os.path.join(args.work_dir, "cube.prm"), text=uniaxial_cube_scene(
+    L, end_time, 1e-5, "  subsection Material\n    set Model = Johnson-Cook\n  end",
+    top=f"set Additional shared libraries = {library}\n") + uniaxial_boundary_conditions("cube", rate * L))
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if c.check_true("the scene loads the plugin and runs", code == 0, err.strip()):
     probe = read_csv(os.path.join(args.work_dir, "output", "cube", "probe_corner.csv"))
@@ -89,7 +70,7 @@ if c.check_true("the scene loads the plugin and runs", code == 0, err.strip()):
             reference["stress_xx"][i], 0.01, relative=True)
 
 prm = write_scene(os.path.join(args.work_dir, "missing.prm"),
-                  text="set Additional shared libraries = no_such_plugin.so\n" + open(prm).read().split("\n", 2)[2])
+                  text="set Additional shared libraries = no_such_plugin.so\n" + open(prm).read().split("\n", 1)[1])
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 c.check_true("a missing library: exit 2, one line naming it", code == 2 and len(err.strip().splitlines()) == 1 and
              "no_such_plugin.so" in err and "Additional shared libraries" in err, err.strip())

@@ -8,8 +8,8 @@ driven by 'anvil --material-point', against closed forms.
     beta = 0:  sigma = (R sigma_0 + E_p eps) / (1 + E_p / E)
     beta = 1:  sigma = R (sigma_0 + E_p eps) / (1 + R E_p / E)
   with R = 1 + (eps_dot / C)^(1/p). Tolerance 1 % (the issue's); the only
-  model error is the effective total strain rate sqrt(2/3 D':D'), which in
-  plastic flow is (1 - 0.8 E_t/E) of the axial rate.
+  model error is the rate: the model takes the effective plastic strain
+  rate, which in uniaxial plastic flow is (1 - E_t/E) of the axial rate.
 - The same at 40 1/s in the total Lagrangian form and the truss form.
 - Cyclic tension-compression, rate-free: the elastic range at reversal is
   2 sigma_0 with beta = 0 (Bauschinger) and 2 (sigma_0 + E_p eps_p) with

@@ -1,0 +1,167 @@
+/**
+ * @file
+ * Johnson-Cook plasticity with adiabatic heating and Johnson-Cook damage
+ * (LS-DYNA *MAT_JOHNSON_COOK, ABAQUS *Plastic, hardening=JOHNSON COOK with
+ * *Rate Dependent, type=JOHNSON COOK, OpenRadioss LAW2).
+ */
+#pragma once
+
+#include <anvil/material_model/rate_form_elastic.h>
+
+#include <string>
+
+namespace anvil::MaterialModel
+{
+  /**
+   * The Johnson-Cook law (G. R. Johnson, W. H. Cook, 7th Int. Symp.
+   * Ballistics, 1983; fracture: Eng. Fract. Mech. 21 (1985) 31-48), shared by
+   * the material point and unit tests:
+   *
+   *   sigma_y = (A + B eps_p^n) (1 + C ln(eps_p_dot / eps_0_dot)) (1 - T*^m),
+   *   T* = (T - T_t) / (T_m - T_t), clipped to [0, 1],
+   *
+   * the rate term 1 below the reference rate eps_0_dot (ABAQUS's form), no
+   * thermal softening below the transition temperature T_t, no strength at
+   * and above the melting temperature T_m. Adiabatic heating: a fraction
+   * chi (the inelastic heat fraction, Taylor-Quinney) of the plastic work
+   * heats the point, dT = chi sigma_y d eps_p / (rho c_p). Damage
+   * D = sum d eps_p / eps_f with
+   *
+   *   eps_f = (D1 + D2 exp(D3 sigma*)) (1 + D4 ln max(eps_p_dot / eps_0_dot, 1)) (1 + D5 T*),
+   *
+   * sigma* = sigma_m / sigma_eq the stress triaxiality; the point fails at
+   * D = 1.
+   */
+  struct JohnsonCookLaw
+  {
+    double A = 0, B = 0, n = 1, C = 0, reference_rate = 1;
+    double m = 1, melting_temperature = 0, transition_temperature = 0;
+    double density = 0, specific_heat = 0, heat_fraction = 0;
+    double D[5] = {0, 0, 0, 0, 0};
+
+    /** Whether the flow stress softens with temperature. */
+    bool thermal_softening() const
+    {
+      return melting_temperature > transition_temperature && m > 0;
+    }
+
+    /** Whether plastic work heats the point. */
+    bool heating() const
+    {
+      return heat_fraction > 0 && specific_heat > 0;
+    }
+
+    /** Whether damage accumulates (some D_i given). */
+    bool damage() const
+    {
+      return D[0] != 0 || D[1] != 0;
+    }
+
+    /** T*, in [0, 1]. */
+    double homologous_temperature(const double T) const;
+
+    /** Flow stress at plastic strain @p eps_p, plastic strain rate @p rate
+        and temperature @p T; with @p slope_eps and @p slope_rate its
+        derivatives. Units: Pa. */
+    double flow_stress(double eps_p, double rate, double T, double *slope_eps = nullptr,
+                       double *slope_rate = nullptr) const;
+
+    /**
+     * Effective plastic strain increment of the radial return from the
+     * trial effective stress @p q_trial over @p dt at temperature @p T:
+     * the root of q_trial - 3G dep = flow_stress(eps_p + dep, dep / dt, T),
+     * by Newton's method inside the bracket [0, q_trial / 3G] (bisection
+     * where a step leaves it). 0 when the point is within the yield
+     * stress at the reference rate (elastic).
+     */
+    double plastic_increment(double q_trial, double eps_p, double T, double dt, double three_G) const;
+
+    /** Strain to failure at triaxiality @p triaxiality, plastic strain rate
+        @p rate and temperature @p T. */
+    double failure_strain(double triaxiality, double rate, double T) const;
+  };
+
+
+  /**
+   * Johnson-Cook metal (updated and total Lagrangian, the rate form of the
+   * other metals): elastic trial stress from D dt, J2 radial return with
+   * the flow stress of the effective plastic strain, of the effective
+   * plastic strain rate of the increment (solved with the return, so the
+   * rate term adds no explicit feedback: doc/theory.md) and of the
+   * temperature at the start of the step; then adiabatic heating and
+   * damage. Isotropic hardening: no back stress, so nothing to rotate
+   * besides the stress.
+   *
+   * History per point: effective plastic strain, plastic work density,
+   * temperature, damage, effective plastic strain rate, and the
+   * rate-free flow stress (A + B eps_p^n)(1 - T*^m) of the current state,
+   * so that an elastic point is recognised without a pow. The total
+   * Lagrangian form adds the previous F - I (9).
+   */
+  class JohnsonCook : public RateFormElastic
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm) override;
+
+    /** Set the constants directly (unit tests, benchmarks). */
+    void set(double density, double youngs_modulus, double poissons_ratio, const JohnsonCookLaw &law,
+             double initial_temperature, bool erosion);
+
+    unsigned int n_updated_lagrangian_history() const override
+    {
+      return 6;
+    }
+    std::vector<std::string> history_names() const override
+    {
+      return {"effective_plastic_strain", "plastic_work_density", "temperature", "damage",
+              "effective_plastic_strain_rate", ""};
+    }
+    void initialize_history(double *history, const PointData &data) const override;
+    int  dissipation_index() const override
+    {
+      return 1;
+    }
+    bool has_uniaxial_form() const override
+    {
+      return false;
+    }
+    bool erodes() const override
+    {
+      return erosion;
+    }
+    bool point_failed(const double *history) const override
+    {
+      return history[3] >= 1.;
+    }
+    bool rate_dependent() const override
+    {
+      return law.C > 0;
+    }
+    std::string rate_law() const override;
+
+    void update_cauchy_stress(const double *D, double dt, double *stress, double *history) const override;
+
+    /** The elastic trial across the lanes; the return, heating and damage
+        lane by lane where a trial stress is beyond the yield stress. */
+    void update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                    const double (&spin)[3][batch_size],
+                                    double dt,
+                                    double (&stress)[6][batch_size],
+                                    const BatchHistory &history) const override;
+
+    const JohnsonCookLaw &get_law() const
+    {
+      return law;
+    }
+
+  private:
+    /** The return, heating and damage of one point whose trial stress is
+        @p s (updated in place) and history @p h. */
+    void plastic_update(double dt, double *s, double *h) const;
+
+    JohnsonCookLaw law;
+    double         initial_temperature = 0;
+    bool           erosion             = false;
+  };
+} // namespace anvil::MaterialModel
