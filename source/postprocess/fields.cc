@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
 
 namespace anvil::Postprocess
@@ -226,7 +227,9 @@ namespace anvil::Postprocess
         {
           write_atomically(output_directory + "/" +
                              files[Utilities::MPI::this_mpi_process(mpi_communicator)],
-                           [&](std::ostream &out) { Vtu::write_vtu(out, piece, t, output_count); });
+                           [&](std::ostream &out) {
+                             Vtu::write_vtu(out, piece, t, output_count, output_compressed(), &bytes);
+                           });
         }
       catch (const OutputError &e)
         {
@@ -249,12 +252,29 @@ namespace anvil::Postprocess
       pvd_records.clear();
     }
 
+    // The frames' bytes over all processes, with the ratio compression
+    // gave (a run's own frames: a resumed run counts from its restart).
+    void end_of_run(double) override
+    {
+      const MPI_Comm comm    = get_mpi_communicator();
+      const double   raw     = Utilities::MPI::sum(double(bytes.raw), comm);
+      const double   written = Utilities::MPI::sum(double(bytes.written), comm);
+      if (written > 0)
+        get_pcout() << "  fields: " << pvd_records.size() << " frames, arrays " << std::setprecision(3)
+                    << raw / 1e6 << " MB, written " << written / 1e6 << " MB"
+                    << (output_compressed() ? " (zlib, ratio " : " (uncompressed, ratio ") << raw / written
+                    << ")\n";
+    }
+
     void serialize(StateArchive &ar) override
     {
       ar &pvd_records;
     }
 
   private:
+    /** What the VTU arrays held and what was written of them. */
+    Vtu::Bytes bytes;
+
     /** solution.pvd: the frames so far (time, PVTU file). */
     void write_frame_index()
     {

@@ -392,6 +392,14 @@ namespace anvil
       // The test suite runs hundreds of scenes: it makes 'false' the
       // default through the environment (a scene's own 'set Plots' wins).
       const char *plots_default = std::getenv("ANVIL_DEFAULT_PLOTS");
+      prm.declare_entry("Output compression",
+                        "zlib",
+                        Patterns::Selection("zlib|none"),
+                        "How the VTU pieces of the fields store their arrays: "
+                        "'zlib' compresses them in blocks of 32 KiB (VTK's "
+                        "vtkZLibDataCompressor, which ParaView reads as it "
+                        "is; the run's last lines give the ratio); 'none' "
+                        "writes them as they are (base64).");
       prm.declare_entry("Plots",
                         plots_default && std::string(plots_default) == "false" ? "false" :
                                                                                  "true",
@@ -747,6 +755,7 @@ namespace anvil
         print_wall_times = prm.get_bool("Print wall times");
         progress_interval = prm.get_double("Progress interval");
         make_plots       = prm.get_bool("Plots");
+        compress_output  = prm.get("Output compression") == "zlib";
         checkpoint_interval      = prm.get_double("Checkpoint interval");
         checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         checkpoint_at_end        = prm.get_bool("Checkpoint at end");

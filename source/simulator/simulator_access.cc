@@ -248,6 +248,11 @@ namespace anvil
     return simulator.make_plots;
   }
 
+  bool SimulatorAccess::output_compressed() const
+  {
+    return simulator.compress_output;
+  }
+
   void SimulatorAccess::record_output(const std::string &name) const
   {
     simulator.record_output(name);

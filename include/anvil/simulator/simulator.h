@@ -393,6 +393,7 @@ namespace anvil
         there). */
     bool        output_directory_ready = false;
     bool        make_plots = false;
+    bool        compress_output = true;
     unsigned int max_steps;
 
     std::vector<Body>                     bodies;

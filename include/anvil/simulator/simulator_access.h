@@ -117,6 +117,8 @@ namespace anvil
     const std::vector<ForceContributor *> &get_families() const;
     bool                              has_contact() const;
     bool                              plots_requested() const;
+    /** Whether the VTU fields compress their arrays ('Output compression'). */
+    bool                              output_compressed() const;
 
     /** Note the output file @p name (in the output directory) as this
         run's before writing it (rank 0). */

@@ -44,10 +44,23 @@ namespace anvil::Vtu
     std::vector<Array>        point_data, cell_data;
   };
 
+  /** Bytes of the arrays a file holds and of what it writes of them
+      (before base64), summed over the calls it is handed to. */
+  struct Bytes
+  {
+    std::uint64_t raw     = 0;
+    std::uint64_t written = 0;
+  };
+
   /** Write the .vtu file of @p piece (inline base64 binary, little
       endian, UInt64 headers), with the field data TIME and CYCLE, to @p out
-      array by array (the file's text is never held whole in memory). */
-  void write_vtu(std::ostream &out, const Piece &piece, double time, unsigned int cycle);
+      array by array (the file's text is never held whole in memory). With
+      @p compress each array is cut into blocks of 32 KiB compressed by
+      zlib (VTK's vtkZLibDataCompressor: ParaView and VTK read it as they
+      read the uncompressed form); @p bytes, if given, adds up what the
+      arrays hold and what is written of them. */
+  void write_vtu(std::ostream &out, const Piece &piece, double time, unsigned int cycle, bool compress = true,
+                 Bytes *bytes = nullptr);
 
   /** The text of a .pvtu file whose pieces are @p files (relative to it),
       with the arrays of @p layout (its values unused). */
