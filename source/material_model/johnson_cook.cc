@@ -23,18 +23,33 @@ namespace anvil::MaterialModel
   }
 
 
+  double JohnsonCookLaw::thermal_factor(const double T) const
+  {
+    const double Ts = homologous_temperature(T);
+    return Ts > 0 ? 1. - std::pow(Ts, m) : 1.;
+  }
+
+
   double JohnsonCookLaw::flow_stress(const double eps_p,
                                      const double rate,
                                      const double T,
                                      double      *slope_eps,
                                      double      *slope_rate) const
   {
+    return flow_stress_at(eps_p, rate, thermal_factor(T), slope_eps, slope_rate);
+  }
+
+
+  double JohnsonCookLaw::flow_stress_at(const double eps_p,
+                                        const double rate,
+                                        const double thermal,
+                                        double      *slope_eps,
+                                        double      *slope_rate) const
+  {
     const double eps_n   = eps_p > 0 ? std::pow(eps_p, n) : 0.;
     const double harden  = A + B * eps_n;
     const double ratio   = rate / reference_rate;
     const double rate_f  = ratio > 1. ? 1. + C * std::log(ratio) : 1.;
-    const double Ts      = homologous_temperature(T);
-    const double thermal = Ts > 0 ? 1. - std::pow(Ts, m) : 1.;
     if (slope_eps != nullptr)
       // d(B eps^n)/d eps = n B eps^n / eps; at eps = 0 (n < 1) infinite: a
       // large finite slope keeps Newton's step inside the bracket.
@@ -51,20 +66,22 @@ namespace anvil::MaterialModel
                                            const double dt,
                                            const double three_G) const
   {
-    if (!(q_trial > flow_stress(eps_p, 0., T)))
+    // The temperature is that of the start of the step: its factor once.
+    const double thermal = thermal_factor(T);
+    if (!(q_trial > flow_stress_at(eps_p, 0., thermal)))
       return 0.;
     // g(d) = q_trial - 3G d - sigma_y(eps_p + d, d / dt, T) falls
     // monotonically in d: g(0) > 0, g(q_trial / 3G) <= 0.
     const double scale = q_trial / three_G;
     auto         g     = [&](const double d, double &slope) {
       double       se, sr;
-      const double s = flow_stress(eps_p + d, dt > 0 ? d / dt : 0., T, &se, &sr);
+      const double s = flow_stress_at(eps_p + d, dt > 0 ? d / dt : 0., thermal, &se, &sr);
       slope          = -three_G - se - (dt > 0 ? sr / dt : 0.);
       return q_trial - three_G * d - s;
     };
     // The first guess: the rate-free return with the current slope.
     double       se, sr;
-    const double s0 = flow_stress(eps_p, 0., T, &se, &sr);
+    const double s0 = flow_stress_at(eps_p, 0., thermal, &se, &sr);
     const double d0 = std::min((q_trial - s0) / (three_G + std::min(se, 1e3 * three_G)), scale);
     return bracketed_newton(g, 0., scale, d0, 1e-14 * scale);
   }

@@ -60,11 +60,18 @@ namespace anvil::MaterialModel
     /** T*, in [0, 1]. */
     double homologous_temperature(const double T) const;
 
+    /** 1 - T*^m. */
+    double thermal_factor(double T) const;
+
     /** Flow stress at plastic strain @p eps_p, plastic strain rate @p rate
         and temperature @p T; with @p slope_eps and @p slope_rate its
         derivatives. Units: Pa. */
     double flow_stress(double eps_p, double rate, double T, double *slope_eps = nullptr,
                        double *slope_rate = nullptr) const;
+
+    /** The same with the thermal factor 1 - T*^m given. */
+    double flow_stress_at(double eps_p, double rate, double thermal, double *slope_eps = nullptr,
+                          double *slope_rate = nullptr) const;
 
     /**
      * Effective plastic strain increment of the radial return from the
