@@ -69,6 +69,16 @@ namespace anvil::Postprocess
                       summary.quiet_displacement_sum / summary.quiet_rows :
                       summary.residual_displacement)
                 << '\n';
+            // Every probe by name, the same figures (the first probe's
+            // repeat the two rows above).
+            const auto &probes = get_probes();
+            for (unsigned int p = 0; p < probes.size() && p < summary.probe_peak.size(); ++p)
+              out << "peak_displacement_" << probes[p].name << "_m," << summary.probe_peak[p] << '\n'
+                  << "residual_displacement_" << probes[p].name << "_m,"
+                  << (summary.ended_early && summary.quiet_rows > 0 ?
+                        summary.probe_quiet_sum[p] / summary.quiet_rows :
+                        summary.probe_last[p])
+                  << '\n';
           }
         if (has_contact())
           {

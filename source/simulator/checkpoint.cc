@@ -147,9 +147,10 @@ namespace anvil
 
 
   // The state is stored per process in the order of its elements and
-  // nodes: 'layout' names that order (1, unstated: element ids in p4est's
-  // tree order; 2: the scene's cell order, the fully distributed mesh). A
-  // checkpoint of another layout would load its state onto other elements.
+  // nodes: 'layout' names that order and what the state holds (1, unstated:
+  // element ids in p4est's tree order; 2: the scene's cell order, the fully
+  // distributed mesh; 3: the run summary with every probe's figures). A
+  // checkpoint of another layout would load its state wrongly.
   void Simulator::check_checkpoint(const std::string &dir) const
   {
     int n = -1, layout = 1;
@@ -166,8 +167,8 @@ namespace anvil
                        "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
     if (layout != checkpoint_layout)
       throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' has state layout " +
-                       std::to_string(layout) + " (written by an earlier Anvil, whose elements were in " +
-                       "another order); this build reads layout " + std::to_string(checkpoint_layout) +
+                       std::to_string(layout) + " (written by an earlier Anvil, whose state was laid " +
+                       "out otherwise); this build reads layout " + std::to_string(checkpoint_layout) +
                        ": run the scene again from its start");
     if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
       throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +

@@ -66,6 +66,7 @@ namespace anvil
         summary.quiet_since            = -1;
         summary.quiet_displacement_sum = 0;
         summary.quiet_rows             = 0;
+        std::fill(summary.probe_quiet_sum.begin(), summary.probe_quiet_sum.end(), 0.);
         return false;
       }
     if (summary.quiet_since < 0)
@@ -84,13 +85,24 @@ namespace anvil
   {
     if (probes.empty())
       return;
-    const double u = std::sqrt(probe_values[0] * probe_values[0] + probe_values[1] * probe_values[1] +
-                               probe_values[2] * probe_values[2]);
-    summary.peak_displacement     = std::max(summary.peak_displacement, u);
-    summary.residual_displacement = u;
+    const unsigned int n_values = probe_values.size() / probes.size();
+    summary.probe_peak.resize(probes.size(), 0.);
+    summary.probe_last.resize(probes.size(), 0.);
+    summary.probe_quiet_sum.resize(probes.size(), 0.);
+    for (unsigned int p = 0; p < probes.size(); ++p)
+      {
+        const double *u_p = &probe_values[n_values * p];
+        const double  u   = std::sqrt(u_p[0] * u_p[0] + u_p[1] * u_p[1] + u_p[2] * u_p[2]);
+        summary.probe_peak[p] = std::max(summary.probe_peak[p], u);
+        summary.probe_last[p] = u;
+        if (summary.quiet_since >= 0)
+          summary.probe_quiet_sum[p] += u;
+      }
+    summary.peak_displacement     = summary.probe_peak[0];
+    summary.residual_displacement = summary.probe_last[0];
     if (summary.quiet_since >= 0)
       {
-        summary.quiet_displacement_sum += u;
+        summary.quiet_displacement_sum = summary.probe_quiet_sum[0];
         ++summary.quiet_rows;
       }
   }

@@ -114,6 +114,19 @@ namespace anvil
     double       quiet_displacement_sum = 0;
     unsigned int quiet_rows = 0;
     bool   ended_early = false;
+    /** Every probe's peak and last displacement magnitude and its sum over
+        the quiet period's rows, in the order of 'Probes' (summary.csv's
+        peak_displacement_NAME_m, residual_displacement_NAME_m). */
+    std::vector<double> probe_peak, probe_last, probe_quiet_sum;
+
+    template <class Archive>
+    void serialize(Archive &ar)
+    {
+      ar &peak_displacement &residual_displacement &peak_contact_force &contact_start &contact_end
+        &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
+          &contact_limited_steps &quiet_since &quiet_displacement_sum &quiet_rows &ended_early &probe_peak
+            &probe_last &probe_quiet_sum;
+    }
   };
 
 
@@ -218,7 +231,7 @@ namespace anvil
         cells' cost per step (setup.cc). */
     void partition_by_cost(dealii::Triangulation<3> &serial) const;
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 2;
+    static constexpr int checkpoint_layout = 3;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
