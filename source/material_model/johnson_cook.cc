@@ -247,11 +247,7 @@ namespace anvil::MaterialModel
 
   void JohnsonCook::update_cauchy_stress(const double *D, const double dt, double *s, double *h) const
   {
-    const double tr = D[0] + D[1] + D[2];
-    for (unsigned int k = 0; k < 3; ++k)
-      s[k] += (lambda * tr + 2. * mu * D[k]) * dt;
-    for (unsigned int k = 3; k < 6; ++k)
-      s[k] += 2. * mu * D[k] * dt;
+    add_elastic_trial(D, dt, s);
     h[4]             = 0.;
     const double p   = (s[0] + s[1] + s[2]) / 3.;
     const double dev = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) + (s[2] - p) * (s[2] - p) +
@@ -276,11 +272,7 @@ namespace anvil::MaterialModel
     std::uint64_t any_plastic = 0;
     for (unsigned int l = 0; l < W; ++l)
       {
-        const double tr = D[0][l] + D[1][l] + D[2][l];
-        for (unsigned int k = 0; k < 3; ++k)
-          s[k][l] += (lambda * tr + 2. * mu * D[k][l]) * dt;
-        for (unsigned int k = 3; k < 6; ++k)
-          s[k][l] += 2. * mu * D[k][l] * dt;
+        add_elastic_trial(D, dt, s, l);
         const double p   = (s[0][l] + s[1][l] + s[2][l]) / 3.;
         const double dev = (s[0][l] - p) * (s[0][l] - p) + (s[1][l] - p) * (s[1][l] - p) +
                            (s[2][l] - p) * (s[2][l] - p) +

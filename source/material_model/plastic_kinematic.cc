@@ -342,11 +342,7 @@ namespace anvil::MaterialModel
                                               double       *s,
                                               double       *h) const
   {
-    const double tr = D[0] + D[1] + D[2];
-    for (unsigned int k = 0; k < 3; ++k)
-      s[k] += (lambda * tr + 2. * mu * D[k]) * dt;
-    for (unsigned int k = 3; k < 6; ++k)
-      s[k] += 2. * mu * D[k] * dt;
+    add_elastic_trial(D, dt, s);
 
 
     const double p = (s[0] + s[1] + s[2]) / 3.;
@@ -417,13 +413,7 @@ namespace anvil::MaterialModel
             alpha[k][l] = eps_p[l] > 0 ? a[k] : alpha[k][l];
         }
     for (unsigned int l = 0; l < W; ++l)
-      {
-        const double tr = D[0][l] + D[1][l] + D[2][l];
-        for (unsigned int k = 0; k < 3; ++k)
-          s[k][l] += (lambda * tr + 2. * mu * D[k][l]) * dt;
-        for (unsigned int k = 3; k < 6; ++k)
-          s[k][l] += 2. * mu * D[k][l] * dt;
-      }
+      add_elastic_trial(D, dt, s, l);
     const double Hk = law.kinematic_modulus();
     // The relative stress xi = dev(sigma) - alpha of the trial, and its
     // von Mises norm.

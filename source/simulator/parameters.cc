@@ -399,7 +399,7 @@ namespace anvil
                         "'zlib' compresses them in blocks of 32 KiB (VTK's "
                         "vtkZLibDataCompressor, which ParaView reads as it "
                         "is; the run's last lines give the ratio); 'none' "
-                        "writes them as they are (base64).");
+                        "writes them as they are (base64). Units: none.");
       prm.declare_entry("Plots",
                         plots_default && std::string(plots_default) == "false" ? "false" :
                                                                                  "true",

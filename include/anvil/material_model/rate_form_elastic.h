@@ -38,5 +38,29 @@ namespace anvil::MaterialModel
     {
       update_pk2_by_rate_form(F, dt, S, history, n_updated_lagrangian_history());
     }
+
+  protected:
+    /** The elastic trial of the rate-form plastic models, sigma +=
+        (lambda tr(D) I + 2 mu D) dt, of one point... */
+    void add_elastic_trial(const double *D, const double dt, double *s) const
+    {
+      const double tr = D[0] + D[1] + D[2];
+      for (unsigned int k = 0; k < 3; ++k)
+        s[k] += (lambda * tr + 2. * mu * D[k]) * dt;
+      for (unsigned int k = 3; k < 6; ++k)
+        s[k] += 2. * mu * D[k] * dt;
+    }
+
+    /** ... and of lane @p l of a batch (the same arithmetic, so that the
+        scalar and batched paths agree). */
+    void add_elastic_trial(const double (&D)[6][batch_size], const double dt, double (&s)[6][batch_size],
+                           const unsigned int l) const
+    {
+      const double tr = D[0][l] + D[1][l] + D[2][l];
+      for (unsigned int k = 0; k < 3; ++k)
+        s[k][l] += (lambda * tr + 2. * mu * D[k][l]) * dt;
+      for (unsigned int k = 3; k < 6; ++k)
+        s[k][l] += 2. * mu * D[k][l] * dt;
+    }
   };
 } // namespace anvil::MaterialModel
