@@ -2,7 +2,9 @@
  * @file
  * anvil SCENE.prm [--set PATH=VALUE]... | --study STUDY.prm | --help | --print-parameters
  */
+#include <anvil/deck/deck.h>
 #include <anvil/material_model/material_point_driver.h>
+#include <anvil/mesh/keyword_file.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/study/study.h>
 #include <anvil/utilities/input_error.h>
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 
 namespace
@@ -25,6 +28,9 @@ namespace
     "       anvil --resume-from DIR SCENE.prm   a new stage: SCENE from the state in checkpoint DIR\n"
     "       anvil --print-cost SCENE.prm   estimate steps, element-cycles and wall time; run nothing\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
+    "       anvil DECK.k | DECK.inp    run an LS-DYNA keyword deck or a whole ABAQUS/Explicit deck as it comes\n"
+    "       anvil --translate DECK     print the scene a deck translates to (its mesh stays in the deck)\n"
+    "       anvil DECK.k --case ID     run case ID of a deck with *CASE blocks\n"
     "       anvil --material-point DRIVER.prm   drive one material point through a deformation path (no mesh), write CSV\n"
     "       anvil --print-parameters   print every parameter with default, pattern, documentation and units\n"
     "       anvil --print-parameters --material-point   the same for driver files\n"
@@ -60,7 +66,7 @@ int main(int argc, char **argv)
   // it is stopped itself). Other modes keep the default: they just end.
   const bool running = std::none_of(args.begin(), args.end(), [](const std::string &a) {
     return a == "--check" || a == "--print-cost" || a == "--help" || a == "-h" || a == "--version" ||
-           a == "--print-parameters" || a == "--material-point";
+           a == "--print-parameters" || a == "--material-point" || a == "--translate";
   });
   if (running)
     anvil::install_stop_handler();
@@ -104,6 +110,7 @@ int main(int argc, char **argv)
   // [--check | --material-point | ...] FILE [--set PATH=VALUE]..., the
   // options in any order; at most one mode.
   bool                     check_only = false, driver = false, resume = false, cost = false;
+  bool                     translate = false;
   std::string              resume_from, mode;
   std::string              file;
   std::vector<std::string> overrides;
@@ -112,7 +119,7 @@ int main(int argc, char **argv)
       const std::string &a = args[i];
       std::string        error;
       const bool is_mode = a == "--check" || a == "--material-point" || a == "--resume" ||
-                           a == "--print-cost" || a == "--resume-from";
+                           a == "--print-cost" || a == "--resume-from" || a == "--translate";
       if (is_mode && !mode.empty())
         error = "options '" + mode + "' and '" + a + "' cannot be combined";
       else if (a == "--check")
@@ -123,6 +130,18 @@ int main(int argc, char **argv)
         resume = true;
       else if (a == "--print-cost")
         cost = true;
+      else if (a == "--translate")
+        translate = true;
+      else if (a == "--case")
+        {
+          char *end = nullptr;
+          const long id = i + 1 < args.size() ? std::strtol(args[i + 1].c_str(), &end, 10) : 0;
+          if (i + 1 == args.size() || *end != '\0' || id <= 0)
+            error = "option '--case' needs the positive id of a *CASE of the deck";
+          else
+            anvil::KeywordFile::chosen_case() = id;
+          ++i;
+        }
       else if (a == "--resume-from")
         {
           if (i + 1 == args.size())
@@ -168,6 +187,22 @@ int main(int argc, char **argv)
   // waiting in a collective.
   try
     {
+      if (translate)
+        {
+          if (!anvil::Deck::is_deck(file))
+            throw anvil::InputError(file + ": --translate takes a deck (.k, .key, .dyn: LS-DYNA keyword; "
+                                    ".inp: ABAQUS)");
+          const auto t = anvil::Deck::translate(file, file);
+          if (root)
+            {
+              if (!t.ignored.empty())
+                std::cout << "# Not translated (output or settings Anvil answers its own way): " << t.ignored << "\n";
+              if (!t.differs.empty())
+                std::cout << "# Where Anvil's model differs from the deck's code: " << t.differs << "\n";
+              std::cout << t.text << std::flush;
+            }
+          return 0;
+        }
       if (driver)
         {
           // One material point: rank 0 alone does the work.

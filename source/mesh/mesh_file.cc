@@ -7,6 +7,7 @@
  */
 #include <anvil/mesh/mesh_file.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/text.h>
 
 
 #include <algorithm>
@@ -31,31 +32,13 @@ namespace anvil::MeshFile
   }
 
 
+  using Abaqus::Keyword;
+  using Abaqus::Line;
+
   namespace
   {
-    std::string trim(const std::string &s)
-    {
-      const auto b = s.find_first_not_of(" \t\r\n");
-      if (b == std::string::npos)
-        return "";
-      return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-    }
-
     // @sect3{ABAQUS input decks}
     //
-    // A line of the deck and where it came from (for messages).
-    struct Line
-    {
-      std::string  text;
-      std::string  file;
-      unsigned int number;
-
-      std::string where() const
-      {
-        return "mesh file '" + file + "', line " + std::to_string(number) + ": ";
-      }
-    };
-
     std::vector<std::string> split_commas(const std::string &text)
     {
       std::vector<std::string> tokens;
@@ -105,33 +88,6 @@ namespace anvil::MeshFile
           lines.push_back({t, file, number});
         }
     }
-
-    // A keyword with its parameters (upper-case names; values as written)
-    // and its data lines.
-    struct Keyword
-    {
-      std::string                        name, written;
-      std::map<std::string, std::string> parameters;
-      std::vector<Line>                  data;
-      Line                               line;
-
-      bool has(const std::string &p) const
-      {
-        return parameters.count(p) > 0;
-      }
-      std::string get(const std::string &p) const
-      {
-        const auto it = parameters.find(p);
-        return it == parameters.end() ? std::string() : it->second;
-      }
-      std::string required(const std::string &p) const
-      {
-        const std::string value = get(p);
-        if (value.empty())
-          throw InputError(line.where() + "*" + name + " needs '" + key(p) + "=...'");
-        return value;
-      }
-    };
 
     std::vector<Keyword> keywords_of(const std::vector<Line> &lines)
     {
@@ -1083,6 +1039,52 @@ namespace anvil::MeshFile
   } // namespace
 
 
+  bool is_keyword_deck(const std::string &file_name)
+  {
+    const auto dot = file_name.find_last_of('.');
+    const auto ext = dot == std::string::npos ? std::string() : key(file_name.substr(dot + 1));
+    return ext == "K" || ext == "KEY" || ext == "DYN";
+  }
+
+
+  namespace Abaqus
+  {
+    std::string Keyword::required(const std::string &p) const
+    {
+      const std::string value = get(p);
+      if (value.empty())
+        throw InputError(line.where() + "*" + name + " needs '" + key(p) + "=...'");
+      return value;
+    }
+
+
+    std::vector<Keyword> read_keywords(const std::string &file_name)
+    {
+      std::vector<Line> lines;
+      read_lines(file_name, lines, 0);
+      return keywords_of(lines);
+    }
+
+
+    std::vector<std::string> fields(const std::string &text)
+    {
+      std::vector<std::string> out;
+      std::string::size_type   start = 0;
+      while (true)
+        {
+          const auto comma = text.find(',', start);
+          out.push_back(trim(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+          if (comma == std::string::npos)
+            break;
+          start = comma + 1;
+        }
+      if (!out.empty() && out.back().empty())
+        out.pop_back();
+      return out;
+    }
+  } // namespace Abaqus
+
+
   Contents read(const std::string &file_name)
   {
     const auto dot = file_name.find_last_of('.');
@@ -1091,8 +1093,10 @@ namespace anvil::MeshFile
       throw InputError("mesh file '" + file_name + "' does not exist or is not a file");
     if (ext == "INP")
       return read_abaqus(file_name);
+    if (is_keyword_deck(file_name))
+      return read_keyword_deck(file_name);
     if (ext == "MSH")
       return GmshReader(file_name).read();
-    throw InputError("mesh file '" + file_name + "': unknown extension (allowed: .msh, .inp)");
+    throw InputError("mesh file '" + file_name + "': unknown extension (allowed: .msh, .inp, .k, .key, .dyn)");
   }
 } // namespace anvil::MeshFile

@@ -10,6 +10,7 @@
  */
 #include <anvil/mesh/mesh_file.h>
 #include <anvil/rebar/reinforcement.h>
+#include <anvil/deck/deck.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 #include <anvil/utilities/plugins.h>
@@ -566,16 +567,31 @@ namespace anvil
   std::vector<std::vector<std::string>>
   Simulator::read_scene(const std::string              &parameter_file,
                         const std::vector<std::string> &overrides,
-                        dealii::ParameterHandler       &prm)
+                        dealii::ParameterHandler       &prm,
+                        std::vector<std::string>       *deck_notes)
   {
     if (!std::filesystem::exists(parameter_file))
       throw InputError(parameter_file + ": the scene file does not exist");
 
     ExpandedScene expanded;
-    {
-      std::vector<std::string> stack;
-      expand(parameter_file, stack, expanded);
-    }
+    if (Deck::is_deck(parameter_file))
+      {
+        // A deck of another code: the scene it translates to, its mesh
+        // read from the deck itself (beside which the scene 'lies').
+        const auto t = Deck::translate(parameter_file,
+                                       std::filesystem::path(parameter_file).filename().string());
+        expanded.text   = t.text;
+        expanded.origin = t.origin;
+        if (deck_notes && !t.ignored.empty())
+          deck_notes->push_back("the deck's " + t.ignored + ": output or settings Anvil answers its own way");
+        if (deck_notes && !t.differs.empty())
+          deck_notes->push_back("where Anvil's model differs from the deck's code: " + t.differs);
+      }
+    else
+      {
+        std::vector<std::string> stack;
+        expand(parameter_file, stack, expanded);
+      }
     append_overrides(split_overrides(overrides), expanded);
     check_number_ranges(expanded, parameter_file);
     auto parse = [&](dealii::ParameterHandler &prm, const bool skip) {
@@ -675,7 +691,8 @@ namespace anvil
   {
     scene_file = parameter_file;
     dealii::ParameterHandler prm;
-    const auto               lists       = read_scene(parameter_file, overrides, prm);
+    deck_notes.clear();
+    const auto               lists       = read_scene(parameter_file, overrides, prm, &deck_notes);
     const auto              &body_names  = lists[0];
     const auto              &bc_names    = lists[1];
     const auto              &pair_names  = lists[2];

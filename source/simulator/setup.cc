@@ -76,6 +76,8 @@ namespace anvil
     std::vector<Point<3>>    vertices;
     std::vector<CellData<3>> cells;
     SubCellData              boundary;
+    for (const auto &note : deck_notes)
+      pcout << "Warning: " << scene_file << ": " << note << std::endl;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         Triangulation<3> tria;

@@ -57,9 +57,70 @@ namespace anvil::MeshFile
     std::string skipped;
   };
 
-  /** Read @p file_name (.inp or .msh, by its extension). Throws
-      InputError with the file, the line and what is wrong. */
+  /** Read @p file_name (.inp, .msh, or an LS-DYNA keyword deck .k, .key,
+      .dyn, by its extension). Throws InputError with the file, the line
+      and what is wrong. */
   Contents read(const std::string &file_name);
+
+  /** The mesh of an LS-DYNA keyword deck: cell groups 'PART<pid>', node
+      sets 'SET<sid>', surfaces 'SEGMENTSET<sid>', and the nodes that
+      *NODE's TC codes and *BOUNDARY_SPC_NODE constrain as node sets
+      'NODE_TC<code>' and 'SPC_NODE_<dofs>' (dofs: e.g. 'XZ'). */
+  Contents read_keyword_deck(const std::string &file_name);
+
+  /** 'X', 'XZ', 'XYZ', ...: the constrained directions of @p dofs. */
+  std::string keyword_dofs_name(const std::array<bool, 3> &dofs);
+
+  /** Whether @p file_name is an LS-DYNA keyword deck by its extension. */
+  bool is_keyword_deck(const std::string &file_name);
+
+  /** The keywords of an ABAQUS deck, for the mesh reader and the deck
+      translator. */
+  namespace Abaqus
+  {
+    /** A line of the deck and where it came from (for messages). */
+    struct Line
+    {
+      std::string  text;
+      std::string  file;
+      unsigned int number = 0;
+
+      std::string where() const
+      {
+        return "mesh file '" + file + "', line " + std::to_string(number) + ": ";
+      }
+    };
+
+    /** A keyword with its parameters (upper-case names; values as
+        written) and its data lines. */
+    struct Keyword
+    {
+      std::string                        name, written;
+      std::map<std::string, std::string> parameters;
+      std::vector<Line>                  data;
+      Line                               line;
+
+      bool has(const std::string &p) const
+      {
+        return parameters.count(p) > 0;
+      }
+      std::string get(const std::string &p) const
+      {
+        const auto it = parameters.find(p);
+        return it == parameters.end() ? std::string() : it->second;
+      }
+      /** The parameter's value; an InputError naming it if it has none. */
+      std::string required(const std::string &p) const;
+    };
+
+    /** The keywords of @p file_name, *Include files in place, '**'
+        comments dropped. */
+    std::vector<Keyword> read_keywords(const std::string &file_name);
+
+    /** The comma-separated fields of a data line, trimmed (empty ones
+        kept). */
+    std::vector<std::string> fields(const std::string &text);
+  } // namespace Abaqus
 
   /** Upper-case copy of @p name (the key of the maps above). */
   std::string key(const std::string &name);

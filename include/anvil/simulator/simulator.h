@@ -213,11 +213,14 @@ namespace anvil
                                    const std::vector<std::string>   &stages = {});
     /** Expand the scene and its overrides and parse them strictly into
         @p prm; returns the lists of names (bodies, boundary conditions,
-        contact pairs, probes, rebars, stages). */
+        contact pairs, probes, rebars, stages). A deck of another code
+        (Deck::is_deck) is translated first; its warnings go to
+        @p deck_notes if given. */
     static std::vector<std::vector<std::string>>
                 read_scene(const std::string              &parameter_file,
                            const std::vector<std::string> &overrides,
-                           dealii::ParameterHandler       &prm);
+                           dealii::ParameterHandler       &prm,
+                           std::vector<std::string>       *deck_notes = nullptr);
     void        parse_parameters(const std::string              &parameter_file,
                                  const std::vector<std::string> &overrides);
 
@@ -358,6 +361,8 @@ namespace anvil
     // Scene parameters
     std::string scene_file;
     std::string scene_name;
+    /** What the translation of a deck warns of (Deck::Translation). */
+    std::vector<std::string> deck_notes;
     std::string output_directory;
     double      end_time;
     double      time_step_factor;

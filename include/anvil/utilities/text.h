@@ -18,4 +18,13 @@ namespace anvil
       s += (s.empty() ? "" : separator) + item;
     return s;
   }
+
+  /** @p s without the blanks, tabs and line ends around it. */
+  inline std::string trim(const std::string &s)
+  {
+    const auto b = s.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos)
+      return "";
+    return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+  }
 } // namespace anvil
