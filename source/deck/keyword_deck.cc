@@ -59,11 +59,16 @@ namespace anvil::Deck
       throw InputError(kw.line.where() + "*" + kw.name + ": " + what);
     }
 
+    // FIELD may carry what is allowed in parentheses: 'ELFORM (allowed: 0,
+    // 1)'.
     [[noreturn]] void not_default(const Keyword &kw, const std::string &field, const std::string &value)
     {
-      unsupported(kw, field + " = " + printable_excerpt(value) +
-                        " is not supported (Anvil runs this keyword with " + field +
-                        " left at its default; doc/decks.md)");
+      const auto        open = field.find(" (");
+      const std::string name = field.substr(0, open);
+      unsupported(kw, name + " = " + printable_excerpt(value) + " is not supported (" +
+                        (open == std::string::npos ? "Anvil reads this keyword with " + name + " at its default" :
+                                                     field.substr(open + 2, field.size() - open - 3)) +
+                        "; doc/decks.md)");
     }
 
     struct Material
