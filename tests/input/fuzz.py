@@ -9,7 +9,10 @@ paste (empty, signs, 1e308, 1e400, 1e-320, nan, inf, '1,2', lists, words,
 'end' removed, the file cut at a random byte, a scene that includes
 itself.
 
-Also 24 mutated copies of an Abaqus/CAE-layout deck (parts, an instance
+Also 32 mutated copies of a keyword deck in fixed columns (some with a
+column shifted, so that values run into each other) and 16 of a whole
+ABAQUS deck, checked as they come ('anvil --check DECK'), and 24 mutated
+copies of an Abaqus/CAE-layout deck (parts, an instance
 with translation and rotation, sets, a surface, a step) and 32 of a Gmsh
 file (tests/input/two_blocks.geo; when gmsh is installed) through
 '--check' of a scene that takes a region, a surface or node set and a
@@ -138,6 +141,59 @@ subsection Probe tip
   set Node set = {node_set}
 end
 """
+# Decks that run as they come: a keyword deck in fixed columns (two
+# elements, a rigid wall, an initial velocity, a constrained set) and the
+# ABAQUS deck above made whole (a section, a density, a velocity).
+KEYWORD_DECK = """*KEYWORD
+*TITLE
+two bricks on a wall
+*CONTROL_TERMINATION
+   1.0-3
+*CONTROL_TIMESTEP
+       0.0       0.8
+*DATABASE_GLSTAT
+   1.0-5
+*PART
+bricks
+         1         1         1         0         0
+*SECTION_SOLID
+         1         1
+*MAT_PLASTIC_KINEMATIC
+         1    7.85-9  200000.0       0.3     350.0    1000.0       0.0
+      40.0       5.0       0.0
+*INITIAL_VELOCITY_GENERATION
+         1         2       0.0  -10000.0       0.0       0.0
+$ centre
+*SET_NODE_LIST
+         7
+      1001      1004      1005      1008
+*BOUNDARY_SPC_SET
+         7         0         0         1         0         0         0         0
+*RIGIDWALL_PLANAR
+         0         0         0
+      -1.0       0.0       0.0       1.0       0.0       0.0       0.1
+*NODE
+    1001             0.0             0.0             0.0       0       0
+    1002            10.0             0.0             0.0       0       0
+    1003            10.0            10.0             0.0       0       0
+    1004             0.0            10.0             0.0       0       0
+    1005             0.0             0.0            10.0       0       0
+    1006            10.0             0.0            10.0       0       0
+    1007            10.0            10.0            10.0       0       0
+    1008             0.0            10.0            10.0       0       0
+    1009            20.0             0.0             0.0       0       0
+    1010            20.0            10.0             0.0       0       0
+    1011            20.0             0.0            10.0       0       0
+    1012            20.0            10.0            10.0       0       0
+*ELEMENT_SOLID
+       1       1    1001    1002    1003    1004    1005    1006    1007    1008
+       2       1    1002    1009    1010    1003    1006    1011    1012    1007
+*END
+"""
+WHOLE_DECK = DECK.replace("*End Part", "*Solid Section, elset=All, material=Steel\n,\n*End Part").replace(
+    "*Elastic", "*Density\n7.85e-9,\n*Elastic").replace(
+    "*End Assembly", "*Nset, nset=Whole, instance=Bar-1\n 501, 502, 503, 504, 505, 506, 507, 508\n*End Assembly").replace(
+    "*Step, name=Step-1", "*Initial Conditions, type=VELOCITY\nWhole, 1, 100.\n*Step, name=Step-1")
 msh_text = None
 gmsh = shutil.which("gmsh")
 if gmsh:
@@ -148,6 +204,7 @@ if gmsh:
         with open(target, encoding="latin-1") as f:
             msh_text = f.read()
 cases_inp, cases_msh = 24, 32 if msh_text else 0
+cases_k, cases_whole = 32, 16
 
 
 def mutate_mesh(lines):
@@ -211,9 +268,26 @@ for n in range(cases_inp + cases_msh):
     cases.append((case, mesh, kind, True, [args.anvil, "--check", path]))
 
 
+for n in range(cases_k + cases_whole):
+    case = os.path.join(work, f"deck{n}")
+    os.makedirs(case)
+    keyword = n < cases_k
+    name = "deck.k" if keyword else "whole.inp"
+    kind, lines = mutate_mesh((KEYWORD_DECK if keyword else WHOLE_DECK).splitlines(keepends=True))
+    if keyword and rng.random() < 0.3:
+        # Fixed columns shifted: values run into their neighbours.
+        i = rng.randrange(len(lines))
+        at = rng.randrange(max(1, len(lines[i])))
+        lines[i] = lines[i][:at] + lines[i][at + 1:]
+        kind = "deck column shifted"
+    with open(os.path.join(case, name), "w", encoding="latin-1") as f:
+        f.writelines(lines)
+    cases.append((case, name, kind.replace("mesh", "deck"), True, [args.anvil, "--check", name]))
+
+
 def execute(case):
     directory, name, kind, checking, cmd = case
-    code, err = run(cmd, directory if name.endswith((".inp", ".msh")) else
+    code, err = run(cmd, directory if name.endswith((".inp", ".msh", ".k")) else
                     os.path.dirname(cmd[-1] if checking else cmd[1]))
     return case, code, err
 
@@ -239,7 +313,8 @@ for (directory, name, kind, checking, cmd), code, err in results:
 
 total = len(cases)
 print(f"{total} cases: {cases_check} mutated scenes checked and {cases_run} run for 2e-6 s, "
-      f"{cases_inp} mutated ABAQUS decks and {cases_msh} mutated Gmsh files checked: {passed} passed, "
+      f"{cases_inp} mutated ABAQUS meshes, {cases_msh} mutated Gmsh files, {cases_k} mutated keyword decks and "
+      f"{cases_whole} mutated whole ABAQUS decks checked: {passed} passed, "
       f"{total - passed - len(bad)} refused with one line, {len(bad)} bad")
 for kind, line in sorted(refused.items()):
     print(f"  refused ({kind}): {line}")
