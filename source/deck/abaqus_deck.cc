@@ -86,6 +86,7 @@ namespace anvil::Deck
     std::map<std::string, std::vector<std::string>> instances_of; // part -> instances
     std::map<std::string, std::set<std::string>>    element_types; // part ("" flat) -> types
     std::vector<const Keyword *>                    initial, boundaries, pairs_kw;
+    std::vector<std::pair<const Keyword *, std::string>> rigid_kw; // *Rigid Body, its part
     std::map<std::string, double>                   friction_of; // interaction -> mu
     std::string                                     general_property;
     bool                                            general_all = false;
@@ -213,6 +214,14 @@ namespace anvil::Deck
                 general_property = MeshFile::key(f[2]);
               }
           }
+        else if (n == "RIGID BODY")
+          {
+            if (kw.has("ANALYTICAL SURFACE"))
+              unsupported(kw, "analytical rigid surfaces are not supported (Anvil's rigid bodies are meshed)");
+            kw.required("REF NODE");
+            kw.required("ELSET");
+            rigid_kw.emplace_back(&kw, part);
+          }
         else if (n == "CONTACT PAIR")
           pairs_kw.push_back(&kw);
         else if (n == "SURFACE INTERACTION")
@@ -243,6 +252,10 @@ namespace anvil::Deck
       double                 temperature  = 0;
       bool                   has_temperature = false;
       std::string            part;
+      bool                   rigid = false;
+      /** A rigid body's reference node(s). */
+      std::set<unsigned int> reference;
+      std::array<bool, 6>    held{{false, false, false, false, false, false}};
     };
     std::vector<Body> bodies;
     for (const auto &s : sections)
@@ -283,13 +296,57 @@ namespace anvil::Deck
         unsupported(kw, "node set '" + printable_excerpt(name) + "' is not defined (Anvil takes node sets here, not node labels)");
       return s->second;
     };
-    auto bodies_of = [&](const std::vector<unsigned int> &nodes) {
+    // The bodies a node set touches: by their nodes, or a rigid body by
+    // its reference node. A set that touches none is an error, not a
+    // condition silently dropped.
+    auto bodies_of = [&](const std::vector<unsigned int> &nodes, const Keyword &kw, const std::string &name) {
       std::vector<unsigned int> out;
       for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (std::any_of(nodes.begin(), nodes.end(), [&](unsigned int v) { return bodies[b].vertices.count(v); }))
+        if (std::any_of(nodes.begin(), nodes.end(), [&](unsigned int v) {
+              return bodies[b].vertices.count(v) || bodies[b].reference.count(v);
+            }))
           out.push_back(b);
+      if (out.empty())
+        unsupported(kw, "set '" + printable_excerpt(name) + "' holds no node of a body (nor a rigid body's "
+                        "reference node)");
       return out;
     };
+
+    // Rigid bodies: the bodies whose cells the element set holds.
+    for (const auto &[kwp, part_name] : rigid_kw)
+      {
+        const Keyword &kw = *kwp;
+        std::vector<std::string> regions;
+        if (part_name.empty())
+          regions.push_back(MeshFile::key(kw.get("ELSET")));
+        else
+          for (const auto &instance : instances_of[part_name])
+            regions.push_back(MeshFile::key(instance) + "." + MeshFile::key(kw.get("ELSET")));
+        for (const auto &region : regions)
+          {
+            const auto cells = mesh.cell_sets.find(region);
+            if (cells == mesh.cell_sets.end())
+              unsupported(kw, "element set '" + kw.get("ELSET") + "' is not defined");
+            std::set<unsigned int> vertices;
+            for (const unsigned int c : cells->second)
+              vertices.insert(mesh.cells[c].begin(), mesh.cells[c].end());
+            const std::string ref = region.substr(0, region.size() - MeshFile::key(kw.get("ELSET")).size()) +
+                                    MeshFile::key(kw.get("REF NODE"));
+            const auto reference = mesh.node_sets.find(mesh.node_sets.count(ref) ? ref : MeshFile::key(kw.get("REF NODE")));
+            if (reference == mesh.node_sets.end())
+              unsupported(kw, "ref node '" + printable_excerpt(kw.get("REF NODE")) +
+                                "' must name a node set of the reference node");
+            bool found = false;
+            for (auto &b : bodies)
+              if (std::all_of(b.vertices.begin(), b.vertices.end(), [&](unsigned int v) { return vertices.count(v); }))
+                {
+                  b.rigid = found = true;
+                  b.reference.insert(reference->second.begin(), reference->second.end());
+                }
+            if (!found)
+              unsupported(kw, "element set '" + kw.get("ELSET") + "' holds no body (a *Solid Section's elements)");
+          }
+      }
 
     // Initial conditions: whole bodies.
     for (const Keyword *kwp : initial)
@@ -303,10 +360,12 @@ namespace anvil::Deck
             const auto  f     = MeshFile::Abaqus::fields(line.text);
             const auto &nodes = node_set(f.empty() ? "" : f[0], kw);
             const std::set<unsigned int> in(nodes.begin(), nodes.end());
-            for (const unsigned int b : bodies_of(nodes))
+            for (const unsigned int b : bodies_of(nodes, kw, f[0]))
               {
-                if (!std::all_of(bodies[b].vertices.begin(), bodies[b].vertices.end(),
-                                 [&](unsigned int v) { return in.count(v); }))
+                const bool by_reference = std::any_of(bodies[b].reference.begin(), bodies[b].reference.end(),
+                                                      [&](unsigned int v) { return in.count(v); });
+                if (!by_reference && !std::all_of(bodies[b].vertices.begin(), bodies[b].vertices.end(),
+                                                  [&](unsigned int v) { return in.count(v); }))
                   unsupported(kw, "set '" + f[0] + "' holds part of body '" + bodies[b].name +
                                     "': Anvil gives initial conditions to whole bodies");
                 if (type == "VELOCITY")
@@ -382,10 +441,32 @@ namespace anvil::Deck
                   throw InputError(line.where() + "a prescribed displacement of " + f[3] +
                                    " (Anvil prescribes velocities: type=VELOCITY)");
               }
-            if (k.dofs == std::array<bool, 3>{{false, false, false}})
-              continue; // rotations of solids' nodes: nothing to hold
-            for (const unsigned int b : bodies_of(node_set(k.set, kw)))
+            std::array<bool, 6> held{{false, false, false, false, false, false}};
+            if (named.count(t))
+              for (const char ch : named.at(t))
+                held[ch - 'x'] = true;
+            if (t == "ENCASTRE")
+              held = {{true, true, true, true, true, true}};
+            else if (!named.count(t))
+              for (int d = int(value(f[1], line, "dof")); d <= int(f.size() > 2 && !f[2].empty() ? value(f[2], line, "dof") : value(f[1], line, "dof")); ++d)
+                held[d - 1] = true;
+            for (const unsigned int b : bodies_of(node_set(k.set, kw), kw, k.set))
               {
+                if (bodies[b].rigid)
+                  {
+                    // The reference node's conditions: the rigid body's.
+                    for (unsigned int d = 0; d < 6; ++d)
+                      bodies[b].held[d] = bodies[b].held[d] || held[d];
+                    for (unsigned int d = 0; d < 3; ++d)
+                      if (k.dofs[d] && k.velocity)
+                        {
+                          bodies[b].velocity[d] = k.value[d];
+                          bodies[b].has_velocity = true;
+                        }
+                    continue;
+                  }
+                if (k.dofs == std::array<bool, 3>{{false, false, false}})
+                  continue; // rotations of solids' nodes: nothing to hold
                 Constraint kb = k;
                 kb.body       = bodies[b].name;
                 constraints.push_back(kb);
@@ -439,7 +520,7 @@ namespace anvil::Deck
                 for (const auto &face : mesh.faces)
                   if (face.boundary_id == id->second)
                     nodes.insert(nodes.end(), face.vertices.begin(), face.vertices.end());
-                const auto owners = bodies_of(nodes);
+                const auto owners = bodies_of(nodes, kw, f[s]);
                 if (owners.size() != 1)
                   throw InputError(line.where() + "surface '" + f[s] + "' must lie on one body");
                 side[s] = bodies[owners[0]].name;
@@ -495,6 +576,41 @@ namespace anvil::Deck
         w.leave();
         if (b.has_velocity)
           w.set("Initial velocity", SceneWriter::vector(b.velocity[0], b.velocity[1], b.velocity[2]));
+        if (b.rigid)
+          {
+            const auto m = materials.find(b.material);
+            if (m == materials.end() || !m->second.options.count("DENSITY") || !m->second.options.count("ELASTIC"))
+              unsupported(*s.keyword, "the rigid body's material '" + b.material + "' needs *Density and *Elastic");
+            const Keyword &dk = *m->second.options.at("DENSITY"), &ek = *m->second.options.at("ELASTIC");
+            const auto     df = MeshFile::Abaqus::fields(dk.data.empty() ? "" : dk.data[0].text);
+            const auto     ef = MeshFile::Abaqus::fields(ek.data.empty() ? "" : ek.data[0].text);
+            if (df.empty() || ef.size() < 2)
+              unsupported(dk, "expected the density, and *Elastic's E and nu");
+            w.enter("Material");
+            w.set("Model", "rigid");
+            w.enter("rigid");
+            w.set("Density", value(df[0], dk.data[0], "density"));
+            w.set("Young's modulus", value(ef[0], ek.data[0], "E"));
+            w.set("Poisson's ratio", value(ef[1], ek.data[0], "nu"));
+            w.leave();
+            w.leave();
+            std::string held;
+            static const char *dof_name[6] = {"x", "y", "z", "rx", "ry", "rz"};
+            bool all = true;
+            for (unsigned int d = 0; d < 6; ++d)
+              {
+                all = all && b.held[d];
+                if (b.held[d])
+                  held += std::string(held.empty() ? "" : ", ") + dof_name[d];
+              }
+            w.enter("Rigid body");
+            w.set("Motion", all ? "prescribed" : "free");
+            if (!all && !held.empty())
+              w.set("Constraints", held);
+            w.leave();
+            w.leave();
+            continue;
+          }
         const auto &types = element_types[b.part];
         // ABAQUS/Explicit's C3D8 is selectively reduced (constant volume
         // strain): it does not lock in plastic flow, Anvil's full 2x2x2

@@ -5,6 +5,7 @@
  * lumped mass, boundary conditions, contact surfaces and probes.
  */
 #include <anvil/mesh/mesh_file.h>
+#include <anvil/deck/deck.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
 
@@ -83,7 +84,9 @@ namespace anvil
         Triangulation<3> tria;
         MeshNames        names;
         bodies[b].create_mesh(tria, &names);
-        if (!names.note.empty())
+        // A deck's translation has accounted for every keyword the mesh
+        // reader passes over.
+        if (!names.note.empty() && !Deck::is_deck(scene_file))
           pcout << "Warning: body '" << bodies[b].name << "': " << names.note << std::endl;
         if (!names.info.empty())
           pcout << "Body '" << bodies[b].name << "': " << names.info << std::endl;

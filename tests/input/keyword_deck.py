@@ -389,6 +389,25 @@ if code == 0 and code2 == 0:
     c.check_true("the ABAQUS deck's energy history equals its scene's, character for character",
                  energy("deck") == energy("abaqus_scene"))
 
+# The striker as an ABAQUS rigid body: its reference node carries the
+# initial velocity and holds the sideways motion and the rotations.
+rigid = open(os.path.join(w, "deck.inp")).read()
+rigid = rigid.replace("*Solid Section, elset=PART1, material=STEEL",
+                      "*Node\n999, 0.125, 0.125, 0.5\n*Nset, nset=RP\n999,\n"
+                      "*Rigid Body, ref node=RP, elset=PART1\n*Solid Section, elset=PART1, material=STEEL")
+rigid = rigid.replace("PART1_NODES, 3, -50.", "RP, 3, -50.").replace("*Boundary\n", "*Boundary\nRP, 1, 2\nRP, 4, 6\n")
+with open(os.path.join(w, "rigid.inp"), "w") as f:
+    f.write(rigid)
+code, out, err = run_anvil(args.anvil, "rigid.inp", cwd=w, extra_args=("--translate",))
+c.check_true("ABAQUS *Rigid Body: a free rigid body, its velocity and constraints from the reference node",
+             code == 0 and "set Model = rigid" in out and "set Motion = free" in out and
+             "set Initial velocity = 0, 0, -50" in out and "rx, ry, rz" in out, err.strip()[-300:])
+code, out, err = run_anvil(args.anvil, "rigid.inp", cwd=w, extra_args=("--set", "Simulation/Print wall times=false"))
+if c.check_true("anvil rigid.inp exits 0", code == 0, err.strip()[-300:]):
+    rows = energy("rigid").splitlines()[1:]
+    c.check_below("rigid.inp: largest energy balance error", max(abs(float(r.split(",")[-1])) for r in rows), 0.01)
+    c.check_true("rigid.inp: no warning of keywords the mesh reader skipped", "skipped" not in out)
+
 # @sect{What is not supported: one line, exit 2}
 base = keyword_deck("free")
 errors = {

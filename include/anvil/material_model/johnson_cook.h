@@ -6,6 +6,8 @@
  */
 #pragma once
 
+#include <cstdint>
+
 #include <anvil/material_model/rate_form_elastic.h>
 
 #include <string>
@@ -81,7 +83,8 @@ namespace anvil::MaterialModel
      * where a step leaves it). 0 when the point is within the yield
      * stress at the reference rate (elastic).
      */
-    double plastic_increment(double q_trial, double eps_p, double T, double dt, double three_G) const;
+    double plastic_increment(double q_trial, double eps_p, double T, double dt, double three_G,
+                             double guess = 0) const;
 
     /** Strain to failure at triaxiality @p triaxiality, plastic strain rate
         @p rate and temperature @p T. */
@@ -165,7 +168,12 @@ namespace anvil::MaterialModel
   private:
     /** The return, heating and damage of one point whose trial stress is
         @p s (updated in place) and history @p h. */
-    void plastic_update(double dt, double *s, double *h) const;
+    void plastic_update(double dt, double *s, double *h, double previous_rate = 0) const;
+    /** The same for the lanes of a batch whose @p flag is set, in vector
+        registers. */
+    void plastic_update_batch(double dt, const std::uint64_t (&flag)[batch_size],
+                              const double (&previous_rate)[batch_size], double (&s)[6][batch_size],
+                              const BatchHistory &history) const;
 
     JohnsonCookLaw law;
     double         initial_temperature = 0;
