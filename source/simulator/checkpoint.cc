@@ -14,7 +14,11 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <boost/crc.hpp>
+
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -23,6 +27,63 @@ namespace anvil
 {
   using namespace dealii;
   namespace fs = std::filesystem;
+
+  namespace
+  {
+    // Every state file ends with a trailer: a tag, the length of the state
+    // before it and the state's CRC-32, so that a file cut short, grown or
+    // with a flipped byte is refused before a byte of it is read as state
+    // (a damaged length field would otherwise allocate at random).
+    constexpr char          trailer_tag[8] = {'A', 'N', 'V', 'I', 'L', 'C', 'K', '1'};
+    constexpr std::size_t   trailer_size   = sizeof(trailer_tag) + sizeof(std::uint64_t) + sizeof(std::uint32_t);
+
+    std::uint32_t crc32(const std::string &data, const std::size_t n)
+    {
+      boost::crc_32_type crc;
+      crc.process_bytes(data.data(), n);
+      return crc.checksum();
+    }
+
+    std::string with_trailer(const std::string &state)
+    {
+      std::string         out = state;
+      const std::uint64_t n   = state.size();
+      const std::uint32_t c   = crc32(state, state.size());
+      out.append(trailer_tag, sizeof(trailer_tag));
+      out.append(reinterpret_cast<const char *>(&n), sizeof(n));
+      out.append(reinterpret_cast<const char *>(&c), sizeof(c));
+      return out;
+    }
+
+    /** The state of a file read whole, or an empty string and @p failure
+        saying what is wrong with it. */
+    std::string without_trailer(std::string data, std::string &failure)
+    {
+      if (data.size() < trailer_size ||
+          data.compare(data.size() - trailer_size, sizeof(trailer_tag), trailer_tag, sizeof(trailer_tag)) != 0)
+        {
+          failure = "it is cut short or is no checkpoint of this Anvil (no checksum at its end)";
+          return {};
+        }
+      std::uint64_t n;
+      std::uint32_t c;
+      std::memcpy(&n, data.data() + data.size() - trailer_size + sizeof(trailer_tag), sizeof(n));
+      std::memcpy(&c, data.data() + data.size() - sizeof(c), sizeof(c));
+      if (n != data.size() - trailer_size)
+        {
+          failure = "its length does not match the length it records (" + std::to_string(data.size() - trailer_size) +
+                    " bytes of state, " + std::to_string(n) + " recorded)";
+          return {};
+        }
+      if (crc32(data, n) != c)
+        {
+          failure = "its checksum does not match: the file is damaged";
+          return {};
+        }
+      data.resize(n);
+      return data;
+    }
+  } // namespace
 
 
 
@@ -98,7 +159,7 @@ namespace anvil
     std::string failure;
     try
       {
-        write_atomically(dir + ".new/state." + std::to_string(rank) + ".bin", ar.data());
+        write_atomically(dir + ".new/state." + std::to_string(rank) + ".bin", with_trailer(ar.data()));
       }
     catch (const OutputError &e)
       {
@@ -186,8 +247,15 @@ namespace anvil
     int bad = in ? 0 : 1;
     if (Utilities::MPI::max(bad, mpi_communicator) != 0)
       throw InputError(scene_file + ": --resume: cannot read " + file);
+    std::string       damage;
+    const std::string state = without_trailer(data.str(), damage);
+    if (Utilities::MPI::max(damage.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw InputError(scene_file + ": --resume: the checkpoint file " +
+                       (damage.empty() ? std::string("of another rank") : file) + " is refused: " +
+                       (damage.empty() ? std::string("it is damaged") : damage) +
+                       " (run the scene again from its start, or from an intact checkpoint)");
 
-    StateArchive              ar(data.str());
+    StateArchive              ar(state);
     std::vector<unsigned int> counts;
     std::vector<long>         lengths;
     std::vector<std::string>  names;

@@ -10,9 +10,11 @@ supports: every kind of state Anvil carries), 12 ms.
   saying how to resume; the resumed run equals the uninterrupted np = 2 run
   byte for byte.
 - Resuming on another number of processes, without a checkpoint, with
-  a changed scene, or from a checkpoint of an earlier state layout (its
+  a changed scene, from a checkpoint of an earlier state layout (its
   info without the 'layout' line: the element order before the fully
-  distributed mesh) stops with one line (exit 2).
+  distributed mesh), or from a damaged one (its state file cut short, a
+  byte flipped, bytes appended: each file carries its length and CRC-32)
+  stops with one line (exit 2).
 """
 import os
 import shutil
@@ -117,7 +119,27 @@ with open(os.path.join(old, "info")) as fh:
     info = [l for l in fh if not l.startswith("layout")]
 with open(os.path.join(old, "info"), "w") as fh:
     fh.writelines(info)
+# Damaged checkpoints: cut short, a byte flipped, bytes appended.
+def damaged(name, change):
+    d = os.path.join(work, "output", name)
+    shutil.rmtree(d, ignore_errors=True)
+    shutil.copytree(os.path.join(work, "output", "term1"), d)
+    state = os.path.join(d, "checkpoint", "state.0.bin")
+    data = bytearray(open(state, "rb").read())
+    with open(state, "wb") as fh:
+        fh.write(change(data))
+    return command(name, resume=True)
+
+
+def flip(data):
+    data[len(data) // 3] ^= 0x10
+    return data
+
+
 for label, cmd, words in (
+        ("from a checkpoint cut short", damaged("cut", lambda d: d[:len(d) // 2]), ["is refused", "cut short"]),
+        ("from a checkpoint with a byte flipped", damaged("flipped", flip), ["is refused", "checksum"]),
+        ("from a checkpoint with bytes appended", damaged("grown", lambda d: d + b"\0" * 100), ["is refused"]),
         ("from an earlier state layout", command("old_layout", resume=True), ["layout 1", "run the scene again"]),
         ("on another number of processes", command("term", np=1, resume=True), ["written by 2", "-np 2"]),
         ("without a checkpoint", command("nothing", resume=True), ["no checkpoint"]),
