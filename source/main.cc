@@ -12,6 +12,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <boost/program_options.hpp>
+
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
@@ -42,6 +44,89 @@ namespace
     "             5 stopped by SIGTERM/SIGINT after writing a checkpoint, 1 other errors.\n";
 }
 
+namespace
+{
+  namespace po = boost::program_options;
+
+  /** What the command line asks for. */
+  struct CommandLine
+  {
+    std::string              file, resume_from, mode, error;
+    std::vector<std::string> overrides;
+    long                     case_id = 0;
+    bool help = false, version = false, print_parameters = false, check = false, driver = false, resume = false,
+         cost = false, translate = false;
+  };
+
+  /**
+   * The command line by Boost.Program_options: the options in any order
+   * (anvil SCENE.prm --check), '--set' as often as needed, at most one mode
+   * (--check, --material-point, --resume, --resume-from, --print-cost,
+   * --translate) and one file. A mistake becomes CommandLine::error (one
+   * line; printed once MPI says which rank is the root).
+   */
+  CommandLine parse_command_line(const std::vector<std::string> &args)
+  {
+    CommandLine             c;
+    po::options_description options;
+    options.add_options()("help,h", "")("version", "")("print-parameters", "")("check", "")("material-point", "")(
+      "resume", "")("resume-from", po::value<std::string>(), "")("print-cost", "")("translate", "")(
+      "case", po::value<long>(), "")("set", po::value<std::vector<std::string>>(), "")(
+      "file", po::value<std::vector<std::string>>(), "");
+    po::positional_options_description positional;
+    positional.add("file", -1);
+    po::variables_map vm;
+    try
+      {
+        // Unix style without guessing abbreviations ('--che' is a mistake,
+        // not --check) and without '-' as a file name.
+        const auto style = (po::command_line_style::unix_style ^ po::command_line_style::allow_guessing) &
+                           ~po::command_line_style::allow_sticky;
+        po::store(po::command_line_parser(args).options(options).positional(positional).style(style).run(), vm);
+        po::notify(vm);
+      }
+    catch (const po::error &e)
+      {
+        c.error = e.what();
+        return c;
+      }
+    c.help             = vm.count("help") > 0;
+    c.version          = vm.count("version") > 0;
+    c.print_parameters = vm.count("print-parameters") > 0;
+    c.check            = vm.count("check") > 0;
+    c.driver           = vm.count("material-point") > 0;
+    c.resume           = vm.count("resume") > 0;
+    c.cost             = vm.count("print-cost") > 0;
+    c.translate        = vm.count("translate") > 0;
+    if (vm.count("resume-from"))
+      c.resume_from = vm["resume-from"].as<std::string>();
+    if (vm.count("set"))
+      c.overrides = vm["set"].as<std::vector<std::string>>();
+    if (vm.count("case"))
+      {
+        c.case_id = vm["case"].as<long>();
+        if (c.case_id <= 0)
+          c.error = "option '--case' needs the positive id of a *CASE of the deck";
+      }
+    if (vm.count("file"))
+      {
+        const auto &files = vm["file"].as<std::vector<std::string>>();
+        if (files.size() > 1)
+          c.error = "expected one scene file, got '" + files[0] + "' and '" + files[1] + "'";
+        c.file = files[0];
+      }
+    for (const char *mode : {"check", "material-point", "resume", "resume-from", "print-cost", "translate"})
+      if (vm.count(mode))
+        {
+          if (!c.mode.empty() && c.error.empty())
+            c.error = "options '--" + c.mode + "' and '--" + mode + "' cannot be combined";
+          c.mode = mode;
+        }
+    return c;
+  }
+} // namespace
+
+
 int main(int argc, char **argv)
 {
   const std::vector<std::string> args(argv + 1, argv + argc);
@@ -56,6 +141,7 @@ int main(int argc, char **argv)
       anvil::Study::print_parameters(std::cout);
       return 0;
     }
+  const CommandLine cl = parse_command_line(args);
 
   // Past a file-size limit a write fails (and is reported) instead of the
   // signal killing the run.
@@ -64,10 +150,8 @@ int main(int argc, char **argv)
   // from its very start: one that arrives while MPI starts or the scene is
   // set up is honoured at the first step (a study stops its runs whenever
   // it is stopped itself). Other modes keep the default: they just end.
-  const bool running = std::none_of(args.begin(), args.end(), [](const std::string &a) {
-    return a == "--check" || a == "--print-cost" || a == "--help" || a == "-h" || a == "--version" ||
-           a == "--print-parameters" || a == "--material-point" || a == "--translate";
-  });
+  const bool running = cl.error.empty() && !(cl.check || cl.cost || cl.help || cl.version ||
+                                             cl.print_parameters || cl.driver || cl.translate);
   if (running)
     anvil::install_stop_handler();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
@@ -76,102 +160,54 @@ int main(int argc, char **argv)
     anvil::install_stop_handler();
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
-  if (args.size() == 2 && args[0] == "--print-parameters" && args[1] == "--material-point")
+  if (cl.error.empty() && cl.print_parameters)
     {
+      if (!cl.file.empty() || !cl.overrides.empty() || (!cl.mode.empty() && cl.mode != "material-point"))
+        {
+          if (root)
+            std::cerr << "anvil: error: --print-parameters takes no scene ('--print-parameters "
+                         "--material-point' or '--print-parameters --study' for those files)\n";
+          return 2;
+        }
       if (root)
         {
-          dealii::ParameterHandler prm;
-          anvil::MaterialModel::MaterialPointDriver::declare_parameters(prm);
-          prm.print_parameters(std::cout,
-                               dealii::ParameterHandler::OutputStyle::PRM |
-                                 dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
+          if (cl.driver)
+            {
+              dealii::ParameterHandler prm;
+              anvil::MaterialModel::MaterialPointDriver::declare_parameters(prm);
+              prm.print_parameters(std::cout,
+                                   dealii::ParameterHandler::OutputStyle::PRM |
+                                     dealii::ParameterHandler::OutputStyle::KeepDeclarationOrder);
+            }
+          else
+            anvil::Simulator::print_parameters(std::cout);
         }
       return 0;
     }
-  if (args.size() == 1 && args[0] == "--version")
+  if (cl.error.empty() && cl.version)
     {
       if (root)
         std::cout << "anvil " ANVIL_VERSION " (deal.II " DEAL_II_PACKAGE_VERSION ")\n";
       return 0;
     }
-  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
+  if (cl.error.empty() && cl.help)
     {
       if (root)
         std::cout << usage;
       return 0;
     }
-  if (args.size() == 1 && args[0] == "--print-parameters")
+  if (!cl.error.empty())
     {
       if (root)
-        anvil::Simulator::print_parameters(std::cout);
-      return 0;
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(cl.error)
+                  << " ('anvil --help' shows the usage)\n";
+      return 2;
     }
-
-  // [--check | --material-point | ...] FILE [--set PATH=VALUE]..., the
-  // options in any order; at most one mode.
-  bool                     check_only = false, driver = false, resume = false, cost = false;
-  bool                     translate = false;
-  std::string              resume_from, mode;
-  std::string              file;
-  std::vector<std::string> overrides;
-  for (unsigned int i = 0; i < args.size(); ++i)
-    {
-      const std::string &a = args[i];
-      std::string        error;
-      const bool is_mode = a == "--check" || a == "--material-point" || a == "--resume" ||
-                           a == "--print-cost" || a == "--resume-from" || a == "--translate";
-      if (is_mode && !mode.empty())
-        error = "options '" + mode + "' and '" + a + "' cannot be combined";
-      else if (a == "--check")
-        check_only = true;
-      else if (a == "--material-point")
-        driver = true;
-      else if (a == "--resume")
-        resume = true;
-      else if (a == "--print-cost")
-        cost = true;
-      else if (a == "--translate")
-        translate = true;
-      else if (a == "--case")
-        {
-          char *end = nullptr;
-          const long id = i + 1 < args.size() ? std::strtol(args[i + 1].c_str(), &end, 10) : 0;
-          if (i + 1 == args.size() || *end != '\0' || id <= 0)
-            error = "option '--case' needs the positive id of a *CASE of the deck";
-          else
-            anvil::KeywordFile::chosen_case() = id;
-          ++i;
-        }
-      else if (a == "--resume-from")
-        {
-          if (i + 1 == args.size())
-            error = "option '--resume-from' needs the directory of a checkpoint";
-          else
-            resume_from = args[++i];
-        }
-      else if (a == "--set")
-        {
-          if (i + 1 == args.size())
-            error = "option '--set' needs SUBSECTION/.../ENTRY=VALUE";
-          else
-            overrides.push_back(args[++i]);
-        }
-      else if (!a.empty() && a[0] == '-')
-        error = "unknown option '" + a + "'";
-      else if (file.empty())
-        file = a;
-      else
-        error = "expected one scene file, got '" + file + "' and '" + a + "'";
-      if (is_mode && error.empty())
-        mode = a;
-      if (!error.empty())
-        {
-          if (root)
-            std::cerr << "anvil: error: " << anvil::printable_excerpt(error)
-                      << " ('anvil --help' shows the usage)\n";
-          return 2;
-        }
-    }
+  const std::string                file = cl.file, resume_from = cl.resume_from;
+  const std::vector<std::string>  &overrides = cl.overrides;
+  const bool check_only = cl.check, driver = cl.driver, resume = cl.resume, cost = cl.cost,
+             translate = cl.translate;
+  anvil::KeywordFile::chosen_case() = cl.case_id;
   if (file.empty() || (driver && !overrides.empty()))
     {
       if (root)
