@@ -3,6 +3,7 @@
  * Symmetric node-to-segment penalty contact, seed section 4.3.
  */
 #include <anvil/contact/penalty_contact.h>
+#include <anvil/laws/seed_laws.h>
 
 #include "penalty_contact_halo.h"
 #include <anvil/utilities/input_error.h>
@@ -129,8 +130,8 @@ namespace anvil::Contact
           if (t > pair.static_friction * fn)
             {
               const double rate  = norm(slip) / dt;
-              const double mu    = pair.dynamic_friction + (pair.static_friction - pair.dynamic_friction) *
-                                                            std::exp(-pair.friction_decay * rate);
+              const double mu    = Laws::friction_coefficient(pair.static_friction, pair.dynamic_friction,
+                                                             pair.friction_decay, rate);
               const double limit = mu * fn;
               if (t > limit)
                 trial = (limit / t) * trial;

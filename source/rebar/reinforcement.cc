@@ -3,6 +3,7 @@
  * Reinforcement in the simulator: truss elements embedded in a host body
  * with perfect bond (seed sections 5.1, 5.3, 5.4). See rebar/rebar.h.
  */
+#include <anvil/laws/seed_laws.h>
 #include <anvil/rebar/reinforcement.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/vtu_file.h>
@@ -662,20 +663,11 @@ namespace anvil::Rebar
         const double S = u * t;
         if (dt > 0)
           {
-            // Elastic predictor from the plastic slip; beyond the
-            // (softening) strength tau_max exp(-h D) the slip goes
-            // plastic and D accumulates it. Unloading follows G_s.
-            const double trial = L.bond_modulus * (S - T.plastic_slip[i]);
-            const double limit = tau_max * std::exp(-L.damage_rate * T.damage[i]);
-            double       tau   = trial;
-            if (std::abs(trial) > limit)
-              {
-                tau                   = trial > 0 ? limit : -limit;
-                const double dsp      = S - T.plastic_slip[i] - tau / L.bond_modulus;
-                T.plastic_slip[i] += dsp;
-                T.damage[i] += std::abs(dsp);
-              }
-            T.bond_stress[i] = tau;
+            // Seed Eq. (68): elastic predictor from the plastic slip;
+            // beyond the (softening) strength tau_max exp(-h D) the slip
+            // goes plastic and D accumulates it. Unloading follows G_s.
+            T.bond_stress[i] =
+              Laws::bond_stress(L.bond_modulus, tau_max, L.damage_rate, S, T.plastic_slip[i], T.damage[i]);
             T.slip[i]        = S;
           }
         const double       k_t = L.bond_modulus * perimeter * trib[i];
