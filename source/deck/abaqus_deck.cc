@@ -33,7 +33,7 @@ namespace anvil::Deck
   {
     const char *supported_keywords =
       "the mesh, *Solid Section, *Section Controls, *Material (*Density, *Elastic, *Plastic, *Rate Dependent, "
-      "heat, Johnson-Cook damage), *Initial Conditions, *Boundary, *Step, *Dynamic, *Bulk Viscosity, contact, "
+      "heat, Johnson-Cook damage), *Initial Conditions, *Boundary, *Dload (GRAV), *Step, *Dynamic, *Bulk Viscosity, contact, "
       "output; doc/decks.md lists them";
 
     [[noreturn]] void unsupported(const Keyword &kw, const std::string &what)
@@ -94,6 +94,7 @@ namespace anvil::Deck
     double                                          output_interval = 0, history_interval = 0;
     unsigned int                                    output_number = 0;
     const Keyword                                  *step = nullptr;
+    std::vector<const Keyword *>                    dloads;
 
     std::string part, material, interaction;
     bool        in_step = false;
@@ -173,6 +174,8 @@ namespace anvil::Deck
             if (!(end_time > 0))
               unsupported(kw, "the time period must be positive");
           }
+        else if (n == "DLOAD")
+          dloads.push_back(&kw);
         else if (n == "BULK VISCOSITY")
           {
             if (!kw.data.empty())
@@ -529,6 +532,44 @@ namespace anvil::Deck
           }
       }
 
+    // Gravity: *Dload, SET, GRAV, g, nx, ny, nz on sets that hold every body.
+    dealii::Tensor<1, 3> gravity;
+    const Line          *gravity_line = nullptr;
+    for (const Keyword *kwp : dloads)
+      {
+        const Keyword &kw = *kwp;
+        if (kw.has("AMPLITUDE"))
+          unsupported(kw, "amplitudes are not supported (Anvil's gravity is constant)");
+        for (const auto &line : kw.data)
+          {
+            const auto f = MeshFile::Abaqus::fields(line.text);
+            if (f.size() != 6 || MeshFile::key(f[1]) != "GRAV")
+              throw InputError(line.where() + "*Dload: Anvil takes gravity only, 'SET, GRAV, g, nx, ny, nz'");
+            if (!f[0].empty())
+              {
+                const auto cells = mesh.cell_sets.find(MeshFile::key(f[0]));
+                if (cells == mesh.cell_sets.end())
+                  throw InputError(line.where() + "*Dload: element set '" + printable_excerpt(f[0]) + "' is not defined");
+                std::set<unsigned int> in;
+                for (const unsigned int c : cells->second)
+                  in.insert(mesh.cells[c].begin(), mesh.cells[c].end());
+                for (const auto &b : bodies)
+                  if (!b.rigid && !std::all_of(b.vertices.begin(), b.vertices.end(),
+                                               [&](unsigned int v) { return in.count(v); }))
+                    throw InputError(line.where() + "*Dload: set '" + f[0] + "' leaves out body '" + b.name +
+                                     "': Anvil's gravity acts on every body");
+              }
+            const double         g = value(f[2], line, "the magnitude");
+            dealii::Tensor<1, 3> n;
+            for (unsigned int d = 0; d < 3; ++d)
+              n[d] = value(f[3 + d], line, "the direction");
+            if (n.norm() == 0)
+              throw InputError(line.where() + "*Dload: the direction of gravity is zero");
+            gravity += g * n / n.norm();
+            gravity_line = &line;
+          }
+      }
+
     // @sect4{The scene}
     w.from(file, 1);
     w.comment("The ABAQUS deck " + std::filesystem::path(file).filename().string() +
@@ -560,6 +601,11 @@ namespace anvil::Deck
       w.set("Output interval", end_time / output_number);
     if (history_interval > 0)
       w.set("History interval", history_interval);
+    if (gravity_line)
+      {
+        w.from(gravity_line->file, gravity_line->number);
+        w.set("Gravity", SceneWriter::vector(gravity[0], gravity[1], gravity[2]));
+      }
     w.leave();
 
     for (const auto &b : bodies)

@@ -36,7 +36,7 @@ namespace anvil::Deck
     const char *supported =
       "*NODE, *ELEMENT_SOLID, *PART, *SECTION_SOLID, *HOURGLASS, *MAT_ELASTIC/_PLASTIC_KINEMATIC/_JOHNSON_COOK/"
       "_RIGID, *EOS_LINEAR_POLYNOMIAL, *SET_, *DEFINE_, *INITIAL_VELOCITY, *BOUNDARY_SPC/_PRESCRIBED_MOTION, "
-      "*RIGIDWALL_PLANAR, *CONTACT_, *CONTROL_, *DATABASE_; doc/decks.md lists them";
+      "*RIGIDWALL_PLANAR, *CONTACT_, *LOAD_BODY_X/Y/Z, *CONTROL_, *DATABASE_; doc/decks.md lists them";
 
     // Keywords that request output or describe the run without changing
     // its physics: listed in one warning.
@@ -119,7 +119,7 @@ namespace anvil::Deck
     std::map<long, Part>                        parts;
     std::map<long, const Keyword *>             sections, materials, eoses, hourglasses, curves, systems;
     std::map<long, std::vector<long>>           part_sets;
-    std::vector<const Keyword *>                velocities, spcs, walls, contacts, prescribed;
+    std::vector<const Keyword *>                velocities, spcs, walls, contacts, prescribed, body_loads;
     const Keyword *termination = nullptr, *timestep = nullptr, *bulk = nullptr, *control_hourglass = nullptr,
                   *control_contact = nullptr, *d3plot = nullptr, *glstat = nullptr;
 
@@ -197,6 +197,8 @@ namespace anvil::Deck
           prescribed.push_back(&kw);
         else if (n == "RIGIDWALL_PLANAR")
           walls.push_back(&kw);
+        else if (n == "LOAD_BODY_X" || n == "LOAD_BODY_Y" || n == "LOAD_BODY_Z")
+          body_loads.push_back(&kw);
         else if (n == "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE" || n == "CONTACT_SURFACE_TO_SURFACE" ||
                  n == "CONTACT_AUTOMATIC_NODES_TO_SURFACE" || n == "CONTACT_NODES_TO_SURFACE")
           contacts.push_back(&kw);
@@ -497,6 +499,25 @@ namespace anvil::Deck
               }
           }
       }
+    // Body loads: a base acceleration a along an axis is gravity -a (LS-DYNA's
+    // *LOAD_BODY_Z with 9.81 pulls towards -z), for every part.
+    dealii::Tensor<1, 3> gravity;
+    const Keyword       *gravity_keyword = nullptr;
+    for (const Keyword *kwp : body_loads)
+      {
+        const Keyword &kw = *kwp;
+        if (kw.cards.empty())
+          unsupported(kw, "a card is missing");
+        const auto f = kw.fields(0);
+        if (integer(f[2], kw.cards[0], "LCIDDR") != 0)
+          not_default(kw, "LCIDDR (dynamic relaxation)", f[2]);
+        if (integer(f[6], kw.cards[0], "CID") != 0)
+          not_default(kw, "CID (a local system)", f[6]);
+        const unsigned int d = kw.name.back() - 'X';
+        gravity[d] -= real(f[1], kw.cards[0], "SF", 1) * constant_curve(integer(f[0], kw.cards[0], "LCID"), kw);
+        gravity_keyword = &kw;
+      }
+
     std::vector<std::pair<std::string, std::string>> bcs; // name, body
     std::vector<std::pair<Constraint, long>>         bc_of;
     for (const auto &k : constraints)
@@ -732,6 +753,11 @@ namespace anvil::Deck
       }
     else
       w.set("Time step safety factor", 0.9);
+    if (gravity_keyword)
+      {
+        w.from(gravity_keyword->line.file, gravity_keyword->line.line);
+        w.set("Gravity", SceneWriter::vector(gravity[0], gravity[1], gravity[2]));
+      }
     if (d3plot && !d3plot->cards.empty())
       {
         w.from(d3plot->cards[0].file, d3plot->cards[0].line);

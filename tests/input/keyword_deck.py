@@ -408,6 +408,26 @@ if c.check_true("anvil rigid.inp exits 0", code == 0, err.strip()[-300:]):
     c.check_below("rigid.inp: largest energy balance error", max(abs(float(r.split(",")[-1])) for r in rows), 0.01)
     c.check_true("rigid.inp: no warning of keywords the mesh reader skipped", "skipped" not in out)
 
+# Gravity: LS-DYNA's base acceleration (*LOAD_BODY_Z, 9.81 on a constant
+# curve, pulls towards -z) and ABAQUS's *Dload GRAV.
+g_deck = keyword_deck("free")["deck_free.k"].replace(
+    "*include", "*load_body_z\n1,1.0\n*define_curve\n1\n0.0,9.81\n1.0,9.81\n*include")
+with open(os.path.join(w, "gravity.k"), "w") as f:
+    f.write(g_deck)
+code, out, err = run_anvil(args.anvil, "gravity.k", cwd=w, extra_args=("--translate",))
+c.check_true("*LOAD_BODY_Z 9.81: 'Gravity = 0, 0, -9.81'", code == 0 and "set Gravity = 0, 0, -9.81" in out,
+             err.strip()[-300:])
+with open(os.path.join(w, "bad_gravity.k"), "w") as f:
+    f.write(g_deck.replace("1.0,9.81\n*include", "1.0,0.0\n*include"))
+code, out, err = run_anvil(args.anvil, "bad_gravity.k", cwd=w, extra_args=("--check",))
+c.check_true("a gravity curve that is not constant: exit 2, one line", code == 2 and
+             len(err.strip().splitlines()) == 1 and "not constant" in err, err.strip()[:300])
+with open(os.path.join(w, "gravity.inp"), "w") as f:
+    f.write(open(os.path.join(w, "deck.inp")).read().replace("*Bulk Viscosity", "*Dload\n, GRAV, 9.81, 0., 0., -2.\n*Bulk Viscosity"))
+code, out, err = run_anvil(args.anvil, "gravity.inp", cwd=w, extra_args=("--translate",))
+c.check_true("*Dload GRAV 9.81 towards (0, 0, -2): 'Gravity = 0, 0, -9.81'", code == 0 and
+             "set Gravity = 0, 0, -9.81" in out, err.strip()[-300:])
+
 # @sect{What is not supported: one line, exit 2}
 base = keyword_deck("free")
 errors = {
