@@ -219,6 +219,12 @@ namespace anvil::Contact
                                              contact_results[p].shape_torque);
           }
         springs_across_partitions += contact_results[p].n_springs_across_partitions;
+        if (run_maxima.size() != pairs.size())
+          run_maxima.assign(pairs.size(), {{0., 0., 0.}});
+        auto &m = run_maxima[p];
+        m[0]    = std::max(m[0], contact_results[p].max_penetration);
+        m[1]    = std::max(m[1], contact_results[p].max_penetration_ratio);
+        m[2]    = std::max(m[2], contact_results[p].energy);
         // Every rank has the whole pair's friction work.
         energies.friction += contact_results[p].friction_work;
         for (const auto &[i, local] : owned_index[p])
@@ -309,14 +315,38 @@ namespace anvil::Contact
       if (distributed[p])
         {
           out << "contact_springs_across_partitions," << springs_across_partitions << '\n';
-          return;
+          break;
         }
+    for (unsigned int p = 0; p < run_maxima.size(); ++p)
+      out << "contact_" << pairs[p]->name << "_max_penetration," << run_maxima[p][0] << '\n'
+          << "contact_" << pairs[p]->name << "_max_penetration_ratio," << run_maxima[p][1] << '\n'
+          << "contact_" << pairs[p]->name << "_max_spring_energy," << run_maxima[p][2] << '\n';
+  }
+
+
+  std::string ContactPairs::end_of_run_note() const
+  {
+    std::ostringstream s;
+    const double       E0 = get_initial_energy();
+    for (unsigned int p = 0; p < run_maxima.size(); ++p)
+      if (run_maxima[p][0] > 0)
+        {
+          s << "  contact pair '" << pairs[p]->name << "': deepest penetration " << std::setprecision(3)
+            << run_maxima[p][0] << " (" << 100 * run_maxima[p][1]
+            << " % of the pressed element's thickness), largest energy in its penalty springs "
+            << run_maxima[p][2];
+          if (E0 > 0)
+            s << " (" << 100 * run_maxima[p][2] / E0 << " % of the initial energy)";
+          s << '\n';
+        }
+    return s.str();
   }
 
 
   void ContactPairs::serialize(StateArchive &ar)
   {
-    ar &contact_frequency_squared &contact_results &positions &velocities &forces &springs_across_partitions;
+    ar &contact_frequency_squared &contact_results &positions &velocities &forces &springs_across_partitions
+      &run_maxima;
     for (auto &c : pairs)
       c->serialize(ar);
   }

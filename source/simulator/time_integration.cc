@@ -849,8 +849,11 @@ namespace anvil
       pcout << "\n  contact penalty springs set the size of " << summary.contact_limited_steps
             << " steps; the elements alone would have needed "
             << static_cast<unsigned long>(std::lround(summary.element_steps)) << " steps";
-    pcout << "\n"
-          << "  results: " << output_directory << "/energy.csv, "
+    pcout << "\n";
+    for (auto *family : contributors())
+      if (!family->empty())
+        pcout << family->end_of_run_note();
+    pcout << "  results: " << output_directory << "/energy.csv, "
           << output_directory << "/solution.pvd" << std::endl;
     if (print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       {

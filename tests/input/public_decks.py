@@ -86,6 +86,16 @@ for np_ in (1, 2):
               f"its source states no result)")
         # Elements are about 1 mm long along the bar.
         c.check_below("input.k: the bar's end beyond the wall at y = 40.1 mm [mm]", b["ymax"][bar] - 40.1, 0.02)
+        # The contact's own error, in summary.csv and a line at the end:
+        # the run's deepest penetration is at least any history row's.
+        summary = dict(l.strip().split(",", 1) for l in open(os.path.join(d, "summary.csv")) if "," in l)
+        history = read_csv(os.path.join(d, "contact_wall1_bar.csv"))
+        deepest = float(summary.get("contact_wall1_bar_max_penetration", "nan"))
+        c.check_true("input.k: summary.csv's deepest penetration is the run's (>= every history row's, > 0)",
+                     deepest >= max(history["max_penetration"]) > 0,
+                     f"{deepest} against {max(history['max_penetration'])}")
+        c.check_true("input.k: the run's last lines give the penetration and the springs' energy",
+                     "contact pair 'wall1_bar': deepest penetration" in out and "% of the initial energy" in out)
 if len(energies) == 2:
     c.check_true("input.k: np = 2 writes the probe history of np = 1 (a probe added with --set; bitwise)",
                  energies[0] == energies[1])

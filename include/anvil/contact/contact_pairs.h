@@ -50,6 +50,10 @@ namespace anvil::Contact
     void   write_history(double t, double dt) override;
     void   write_summary(std::ostream &out) const override;
     void serialize(StateArchive &ar) override;
+    /** Per pair that touched: its deepest penetration, as a share of the
+        pressed elements' thickness, and the largest energy its springs
+        held, as a share of the initial energy: the penalty's own error. */
+    std::string end_of_run_note() const override;
 
     /** The largest k/m of the springs in reach (all pairs), held against
         a quick fall: omega_c^2 of the stable step. */
@@ -100,5 +104,8 @@ namespace anvil::Contact
     /** Over the run: the springs whose state crossed a partition boundary
         (summed over the steps and the distributed pairs). */
     unsigned long springs_across_partitions = 0;
+    /** Over the run, per pair: the deepest penetration, its largest ratio
+        to the pressed element's thickness, the largest spring energy. */
+    std::vector<std::array<double, 3>> run_maxima;
   };
 } // namespace anvil::Contact

@@ -96,6 +96,14 @@ namespace anvil
     /** A part of the step's one-line description (Simulator::step_contents). */
     virtual std::string describe() const = 0;
 
+    /** Lines for the end of the run (each ending in a newline), or empty:
+        what the family's own approximation cost (e.g. the contact
+        penalty's penetration). */
+    virtual std::string end_of_run_note() const
+    {
+      return "";
+    }
+
     /** Rows of summary.csv ('key,value\n'), rank 0. */
     virtual void write_summary(std::ostream &out) const
     {
