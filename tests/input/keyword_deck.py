@@ -123,29 +123,39 @@ end
 steel = dict(ro=7850.0, e=2.1e11, pr=0.3, sigy=3.5e8, etan=1e9, src=40.0, srp=5.0)
 concrete = dict(ro=2400.0, e=3e10, pr=0.2)
 
-lsdyna_scene = ("set Bodies = striker, block\n"
-                "set Boundary conditions = b1, b2, b3, b4, b5\n"
-                "set Contact pairs = pair\n" + common_scene +
-                body("striker", "PART1", "0, 0, -50", 0.05, 1.5, f"""
+def steel_material(tangent, beta):
+    """The striker's bilinear steel with Cowper-Symonds rate effects."""
+    return f"""
     set Model = plastic kinematic
     subsection plastic kinematic
       set Density = {steel['ro']}
       set Young's modulus = {steel['e']}
       set Poisson's ratio = {steel['pr']}
       set Yield stress = {steel['sigy']}
-      set Tangent modulus = {steel['etan']}
-      set Hardening parameter beta = 0
+      set Tangent modulus = {tangent!r}
+      set Hardening parameter beta = {beta}
       set Cowper-Symonds C = 40
       set Cowper-Symonds p = 5
       set Strain rate effects = Cowper-Symonds
-    end""") +
-                body("block", "PART2", "0, 0, 0", 0.1, 1.5, f"""
+    end"""
+
+
+def concrete_material():
+    """The block's elastic material."""
+    return f"""
     set Model = elastic
     subsection elastic
       set Density = {concrete['ro']}
       set Young's modulus = {concrete['e']}
       set Poisson's ratio = {concrete['pr']}
-    end""") +
+    end"""
+
+
+lsdyna_scene = ("set Bodies = striker, block\n"
+                "set Boundary conditions = b1, b2, b3, b4, b5\n"
+                "set Contact pairs = pair\n" + common_scene +
+                body("striker", "PART1", "0, 0, -50", 0.05, 1.5, steel_material(steel["etan"], 0)) +
+                body("block", "PART2", "0, 0, 0", 0.1, 1.5, concrete_material()) +
                 condition("b1", "block", "BOTTOM", "x, y, z") + condition("b2", "striker", "XZERO", "x") +
                 condition("b3", "block", "XZERO", "x") + condition("b4", "striker", "YZERO", "y") +
                 condition("b5", "block", "YZERO", "y") + """
@@ -295,26 +305,8 @@ Et = steel["e"] * ((3.6e8 - 3.5e8) / 0.5) / (steel["e"] + (3.6e8 - 3.5e8) / 0.5)
 abaqus_scene = ("set Bodies = striker, block\n"
                 "set Boundary conditions = bc1_bottom, bc2_xzero, bc3_xzero, bc4_yzero, bc5_yzero\n"
                 "set Contact pairs = pair\n" + common_scene.replace("set Time step safety factor = 0.8\n", "") +
-                body("striker", "PART1", "0, 0, -50", 0.1, 1.2, f"""
-    set Model = plastic kinematic
-    subsection plastic kinematic
-      set Density = {steel['ro']}
-      set Young's modulus = {steel['e']}
-      set Poisson's ratio = {steel['pr']}
-      set Yield stress = {steel['sigy']}
-      set Tangent modulus = {Et!r}
-      set Hardening parameter beta = 1
-      set Cowper-Symonds C = 40
-      set Cowper-Symonds p = 5
-      set Strain rate effects = Cowper-Symonds
-    end""") +
-                body("block", "PART2", "0, 0, 0", 0.1, 1.2, f"""
-    set Model = elastic
-    subsection elastic
-      set Density = {concrete['ro']}
-      set Young's modulus = {concrete['e']}
-      set Poisson's ratio = {concrete['pr']}
-    end""") +
+                body("striker", "PART1", "0, 0, -50", 0.1, 1.2, steel_material(Et, 1)) +
+                body("block", "PART2", "0, 0, 0", 0.1, 1.2, concrete_material()) +
                 condition("bc1_bottom", "block", "BOTTOM", "x, y, z") +
                 condition("bc2_xzero", "striker", "XZERO", "x") + condition("bc3_xzero", "block", "XZERO", "x") +
                 condition("bc4_yzero", "striker", "YZERO", "y") + condition("bc5_yzero", "block", "YZERO", "y") + """
