@@ -44,6 +44,9 @@ namespace anvil::Contact
     positions.assign(n_pairs, {});
     velocities.assign(n_pairs, {});
     forces.assign(n_pairs, {});
+    other_forces.assign(n_pairs, {});
+    inverse_masses.assign(n_pairs, {});
+    any_kinematic = false;
     contact_results.assign(n_pairs, {});
     analytic_body.assign(n_pairs, {{-1, -1}});
     contact_frequency_squared = 0;
@@ -140,6 +143,12 @@ namespace anvil::Contact
         if (pairs[p]->needs_velocities())
           velocities[p].resize(3 * dofs.size());
         forces[p].resize(3 * dofs.size());
+        if (pairs[p]->kinematic())
+          {
+            any_kinematic = true;
+            other_forces[p].resize(3 * dofs.size());
+            inverse_masses[p].resize(3 * dofs.size());
+          }
       }
   }
 
@@ -169,7 +178,7 @@ namespace anvil::Contact
     contact_frequency_squared           = 0;
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
-        if (inactive[p])
+        if (inactive[p] || pairs[p]->kinematic())
           continue;
         auto &xs = positions[p];
         auto &vs = velocities[p];
@@ -233,6 +242,79 @@ namespace anvil::Contact
       }
     contact_frequency_squared = std::max(contact_frequency_squared, held_frequency_squared);
     return 1e300;
+  }
+
+
+  // @sect3{Kinematic contact}
+  //
+  // A kinematic pair is evaluated whole on every rank: the positions,
+  // velocities, forces and inverse masses of its nodes are gathered (a
+  // rigid body's and a constrained dof's inverse mass is 0, a constrained
+  // dof moves at its prescribed velocity), and each rank adds the forces
+  // of the nodes it owns.
+  void ContactPairs::add_kinematic_forces(const double dt_previous, const double dt)
+  {
+    if (!any_kinematic)
+      return;
+    const VectorType &position         = get_position();
+    const VectorType &velocity         = get_velocity();
+    VectorType       &force            = get_force();
+    const VectorType &mass             = get_mass();
+    const auto       &rigid_dof        = get_rigid_dof();
+    const auto       &constrained      = get_constrained_dofs();
+    const auto       &held_velocity    = get_constrained_velocity();
+    const MPI_Comm    mpi_communicator = get_mpi_communicator();
+    // Per owned dof, its constraint (k + 1; 0: free).
+    std::vector<unsigned int> held(position.locally_owned_size(), 0);
+    for (unsigned int k = 0; k < constrained.size(); ++k)
+      held[constrained[k]] = k + 1;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        if (inactive[p] || !pairs[p]->kinematic())
+          continue;
+        auto &xs = positions[p];
+        auto &vs = velocities[p];
+        auto &fs = other_forces[p];
+        auto &ws = inverse_masses[p];
+        std::fill(xs.begin(), xs.end(), 0.);
+        std::fill(vs.begin(), vs.end(), 0.);
+        std::fill(fs.begin(), fs.end(), 0.);
+        std::fill(ws.begin(), ws.end(), 0.);
+        for (const auto &[i, local] : owned_index[p])
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              const unsigned int l = local + d;
+              xs[3 * i + d]        = position.local_element(l);
+              fs[3 * i + d]        = force.local_element(l);
+              const bool rigid     = !rigid_dof.empty() && rigid_dof[l];
+              if (held[l] > 0)
+                vs[3 * i + d] = held_velocity[held[l] - 1];
+              else
+                vs[3 * i + d] = velocity.local_element(l);
+              ws[3 * i + d] = rigid || held[l] > 0 ? 0. : 1. / mass.local_element(l);
+            }
+        Utilities::MPI::sum(xs, mpi_communicator, xs);
+        Utilities::MPI::sum(vs, mpi_communicator, vs);
+        Utilities::MPI::sum(fs, mpi_communicator, fs);
+        Utilities::MPI::sum(ws, mpi_communicator, ws);
+        place_analytic_shapes(p);
+        auto &out = forces[p];
+        std::fill(out.begin(), out.end(), 0.);
+        contact_results[p] = pairs[p]->correct(xs, vs, fs, ws, dt_previous, dt, out);
+        const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
+        if (shape_body >= 0)
+          rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
+                                          contact_results[p].shape_torque);
+        if (run_maxima.size() != pairs.size())
+          run_maxima.assign(pairs.size(), {{0., 0., 0.}});
+        auto &m = run_maxima[p];
+        m[0]    = std::max(m[0], contact_results[p].max_penetration);
+        m[1]    = std::max(m[1], contact_results[p].max_penetration_ratio);
+        m[2]    = std::max(m[2], contact_results[p].energy);
+        for (const auto &[i, local] : owned_index[p])
+          for (unsigned int d = 0; d < 3; ++d)
+            force.local_element(local + d) += out[3 * i + d];
+      }
   }
 
 
@@ -317,10 +399,13 @@ namespace anvil::Contact
           out << "contact_springs_across_partitions," << springs_across_partitions << '\n';
           break;
         }
+    // (A kinematic pair's energy is what it took from the bodies so far.)
     for (unsigned int p = 0; p < run_maxima.size(); ++p)
       out << "contact_" << pairs[p]->name << "_max_penetration," << run_maxima[p][0] << '\n'
           << "contact_" << pairs[p]->name << "_max_penetration_ratio," << run_maxima[p][1] << '\n'
-          << "contact_" << pairs[p]->name << "_max_spring_energy," << run_maxima[p][2] << '\n';
+          << "contact_" << pairs[p]->name
+          << (pairs[p]->kinematic() ? "_energy_taken," : "_max_spring_energy,")
+          << (pairs[p]->kinematic() ? contact_results[p].energy : run_maxima[p][2]) << '\n';
   }
 
 
@@ -329,7 +414,16 @@ namespace anvil::Contact
     std::ostringstream s;
     const double       E0 = get_initial_energy();
     for (unsigned int p = 0; p < run_maxima.size(); ++p)
-      if (run_maxima[p][0] > 0)
+      if (pairs[p]->kinematic() && (run_maxima[p][0] > 0 || contact_results[p].energy != 0))
+        {
+          s << "  contact pair '" << pairs[p]->name << "' (kinematic): deepest penetration left at a step's end "
+            << std::setprecision(3) << run_maxima[p][0] << " (" << 100 * run_maxima[p][1]
+            << " % of the thinnest element's thickness), energy the contact took " << contact_results[p].energy;
+          if (E0 > 0)
+            s << " (" << 100 * contact_results[p].energy / E0 << " % of the initial energy)";
+          s << '\n';
+        }
+      else if (run_maxima[p][0] > 0)
         {
           s << "  contact pair '" << pairs[p]->name << "': deepest penetration " << std::setprecision(3)
             << run_maxima[p][0] << " (" << 100 * run_maxima[p][1]

@@ -213,6 +213,18 @@ namespace anvil
     return simulator.rigid_dof;
   }
 
+
+  const std::vector<unsigned int> &SimulatorAccess::get_constrained_dofs() const
+  {
+    return simulator.constrained_dofs;
+  }
+
+
+  const std::vector<double> &SimulatorAccess::get_constrained_velocity() const
+  {
+    return simulator.constrained_velocity;
+  }
+
   const std::vector<unsigned int> &SimulatorAccess::get_group_body() const
   {
     return simulator.solids->group_body();

@@ -114,6 +114,19 @@ namespace anvil
   }
 
 
+  // Kinematic pairs correct the motion predicted over the step dt from all
+  // other forces of time n (Contact::KinematicContact); false without such
+  // pairs.
+  bool Simulator::apply_kinematic_contact(const double dt_previous, const double dt)
+  {
+    if (contact->empty() || !contact->has_kinematic())
+      return false;
+    TimerOutput::Scope t(*timer, "contact");
+    contact->add_kinematic_forces(dt_previous, dt);
+    return true;
+  }
+
+
   void Simulator::update_velocity(const double dt_previous, const double dt)
   {
     TimerOutput::Scope t(*timer, "time integration");
@@ -512,6 +525,7 @@ namespace anvil
     // are left out. The state they leave is never written.
     for (unsigned int k = 0; k < samples; ++k)
       {
+        apply_kinematic_contact(k == 0 ? 0. : dt, dt);
         update_velocity(k == 0 ? 0. : dt, dt);
         update_position(dt);
         position.update_ghost_values();
@@ -730,6 +744,14 @@ namespace anvil
         // one run through the stage change).
         if (last && checkpoint_at_end)
           write_checkpoint();
+        // Kinematic contact pairs, now that the step is known (after the
+        // checkpoint: a run resumed from it makes their forces anew).
+        if (apply_kinematic_contact(dt_previous, last ? 0. : current_dt))
+          {
+            energies.contact = 0;
+            for (const auto &r : contact->results())
+              energies.contact += r.energy;
+          }
         update_velocity(dt_previous, last ? 0. : current_dt);
         check_health(time, step_number, time_step_factor * dt_stable);
         // The end criterion, met at time n, makes n+1 the last time (the

@@ -55,6 +55,15 @@ namespace anvil::Contact
         held, as a share of the initial energy: the penalty's own error. */
     std::string end_of_run_note() const override;
 
+    /** The kinematic pairs' forces at time n (Algorithm::correct()), once
+        the next step @p dt is known (0: the run's last call); the other
+        forces of time n are complete. */
+    void add_kinematic_forces(double dt_previous, double dt);
+    bool has_kinematic() const
+    {
+      return any_kinematic;
+    }
+
     /** The largest k/m of the springs in reach (all pairs), held against
         a quick fall: omega_c^2 of the stable step. */
     double frequency_squared() const
@@ -96,6 +105,10 @@ namespace anvil::Contact
     std::vector<unsigned char>                                           distributed;
     std::vector<std::vector<std::pair<unsigned int, unsigned int>>> relevant_index, owned_index;
     std::vector<std::vector<double>> positions, velocities, forces;
+    /** Per kinematic pair: the other forces and the inverse masses of its
+        nodes (gathered). */
+    std::vector<std::vector<double>> other_forces, inverse_masses;
+    bool                             any_kinematic = false;
     std::vector<ContactResult>       contact_results;
     /** Per pair and surface: the body whose analytic shape the surface
         is (a rigid body's sphere, plane, ...), -1: the body's mesh faces. */

@@ -176,6 +176,33 @@ namespace anvil::Contact
                                          double                     dt,
                                          std::vector<double>       &f) = 0;
 
+    /** Whether the pair enforces contact kinematically: it adds its forces
+        in correct(), once the next step is known, not in compute_forces(). */
+    virtual bool kinematic() const
+    {
+      return false;
+    }
+
+    /**
+     * A kinematic pair's forces: from the positions @p x (x^n), velocities
+     * @p v (v^{n-1/2}), all other forces @p f (F^n) and inverse masses
+     * @p inverse_mass (0 for a rigid body's or a constrained dof; 3 per
+     * pair node each) the motion over the next step is predicted, and the
+     * forces that remove its penetration are added to @p f_contact.
+     * @p dt_previous, @p dt: the steps before and after time n.
+     */
+    virtual ContactResult correct(const std::vector<double> &x,
+                                  const std::vector<double> &v,
+                                  const std::vector<double> &f,
+                                  const std::vector<double> &inverse_mass,
+                                  double                     dt_previous,
+                                  double                     dt,
+                                  std::vector<double>       &f_contact)
+    {
+      (void)x, (void)v, (void)f, (void)inverse_mass, (void)dt_previous, (void)dt, (void)f_contact;
+      return {};
+    }
+
     /** The faces of the eroded elements @p ids (sorted) leave the pair. */
     virtual void deactivate_elements(const std::vector<unsigned long> &ids)
     {

@@ -328,6 +328,9 @@ namespace anvil
     void reduce_element_balance();
     void print_element_balance();
     void   apply_contact(double dt_previous);
+    /** The kinematic contact pairs' forces of time n, the next step @p dt known;
+        false if the scene has none. */
+    bool   apply_kinematic_contact(double dt_previous, double dt);
     void   update_velocity(double dt_previous, double dt);
     void   update_position(double dt);
     void   check_health(double time, unsigned int step, double dt_next);

@@ -106,6 +106,10 @@ namespace anvil
     const std::vector<unsigned char> &get_dof_body() const;
     const std::vector<unsigned char> &get_dof_component() const;
     const std::vector<unsigned char> &get_rigid_dof() const;
+    /** The constrained dofs (local indices of owned dofs) and the
+        velocities they are held at. */
+    const std::vector<unsigned int> &get_constrained_dofs() const;
+    const std::vector<double>       &get_constrained_velocity() const;
     /** The body of each element group. */
     const std::vector<unsigned int> &get_group_body() const;
     const dealii::FESystem<3>        &get_fe() const;

@@ -1,0 +1,133 @@
+"""Kinematic contact enforcement ('Algorithm = kinematic',
+Contact::KinematicContact): the penetration of each step's predicted motion
+removed exactly, momentum conserved, friction by seed Eqs. (61)-(62).
+
+1. Two elastic rods of unequal length (tests/contact/kinematic_rods.prm:
+   rod A 5 m at 1 m/s into rod B 10 m at rest, c = 100 m/s). Bar theory:
+   contact for 2 L_A / c = 0.1 s (measured as the time the force on A
+   exceeds half of rho c A v0 / 2), then rod A at rest. Checks: the
+   contact time within 1 %, rod A's momentum after the impact below 1 %
+   of its initial one, the total momentum conserved to round-off (1e-12),
+   the deepest penetration left at a step's end below 1e-9 of the element
+   size, the energy balance below 1 %. The same scene with the penalty
+   method at its default factor is run and printed beside it.
+   np = 2 gives the contact force and the probes of np = 1 character for
+   character (energy.csv and momentum.csv, sums over each process's nodes,
+   within 1e-8).
+2. An elastic block sliding on a fixed rigid plane under gravity
+   (tests/contact/kinematic_block.prm, mu = 0.3, v0 = 1 m/s): it stops at
+   v0 / (mu g) after v0^2 / (2 mu g) (rigid-block theory) within 1 %; no
+   penetration (below 1e-9 m) and no bounce (the bottom corner never
+   lifts by more than 1e-5 m); the energy the contact took equals m v0^2 / 2
+   within 2 %; the balance below 1 %. The same on the plane's exact
+   analytic shape. np = 2 equals np = 1.
+3. Static against dynamic friction (mu_s = 0.5, mu_d = 0.3, decay 100 s/m)
+   on the flatter block: at a tangential load of 0.4 m g it sticks (moves
+   less than 1 % of what mu_d alone would allow in 0.3 s); at 0.6 m g it
+   slides at (0.6 - 0.3) g within 2 %.
+4. 'Normal damping' with 'Algorithm = kinematic' is refused with one line.
+"""
+import os
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil
+
+args = arguments()
+c = Checker("kinematic contact: rods, sliding and sticking block")
+here = os.path.join(os.path.abspath(args.source_dir), "tests", "contact")
+g = 9.81
+
+
+def run(name, scene, np=1, sets=()):
+    extra = ["--set", f"Simulation/Output directory=output/{name}"]
+    for s in sets:
+        extra += ["--set", s]
+    code, out, err = run_anvil(args.anvil, os.path.join(here, scene), np=np, cwd=args.work_dir,
+                               extra_args=extra)
+    if not c.check_true(f"{name} (np = {np}): anvil exits 0", code == 0, (out + err).strip()[-400:]):
+        c.finish()
+    return os.path.join(args.work_dir, "output", name, scene[:-4])
+
+
+def csv(directory, name):
+    return read_csv(os.path.join(directory, name + ".csv"))
+
+
+def summary(directory):
+    rows = {}
+    with open(os.path.join(directory, "summary.csv")) as f:
+        for line in f:
+            key, _, value = line.strip().partition(",")
+            rows[key] = value
+    return rows
+
+
+# 1. The rods.
+plateau = 0.01 * 100 * 0.25 * 1.0 / 2
+for name, sets in (("rods", ()), ("rods_penalty", ("Contact pair impact/Algorithm=penalty",))):
+    d = run(name, "kinematic_rods.prm", sets=sets)
+    contact, momentum = csv(d, "contact_impact"), csv(d, "momentum")
+    on = [t for t, f in zip(contact["time"], contact["normal_force_x"]) if -f > 0.5 * plateau]
+    duration = on[-1] - on[0]
+    rest = momentum["rod_a_px"][-1] / momentum["rod_a_px"][0]
+    if name == "rods":
+        c.check("contact time / (2 L_A / c)", duration / 0.1, 1.0, 0.01)
+        c.check_below("rod A's momentum after the impact / before", abs(rest), 0.01)
+        c.check_below("total momentum, largest relative change",
+                      max(abs(p / momentum["px"][0] - 1) for p in momentum["px"]), 1e-12)
+        c.check_below("deepest penetration at a step's end / element size",
+                      float(summary(d)["contact_impact_max_penetration"]) / 0.125, 1e-9)
+        c.check_below("largest energy balance error", max(csv(d, "energy")["balance_error"]), 0.01)
+        kinematic = (duration, rest)
+    else:
+        print(f"  penalty (factor 0.1) on the same rods: contact time / (2 L_A / c) = {duration / 0.1:.4f}, "
+              f"rod A keeps {rest:.4f} of its momentum; kinematic: {kinematic[0] / 0.1:.4f}, {kinematic[1]:.4f}")
+par = run("rods_np2", "kinematic_rods.prm", np=2)
+serial = os.path.join(args.work_dir, "output", "rods", "kinematic_rods")
+for f in ("contact_impact", "probe_face_a", "probe_face_b"):
+    same = open(os.path.join(serial, f + ".csv")).read() == open(os.path.join(par, f + ".csv")).read()
+    c.check_true(f"rods: np = 2 writes np = 1's {f}.csv, character for character", same)
+# (Sums over the processes' nodes: equal to round-off.)
+c.check_below("rods: np = 2 against np = 1, largest relative difference of energy.csv and momentum.csv",
+              max(max_relative_difference(csv(serial, f), csv(par, f)) for f in ("energy", "momentum")), 1e-8)
+
+# 2. The sliding block, on the plane's mesh and on its analytic shape.
+mu, v0, mass = 0.3, 1.0, 1000 * 0.1 ** 3
+for name, sets in (("slide", ()), ("slide_analytic", ("Body plane/Rigid body/Contact shape=plane",))):
+    d = run(name, "kinematic_block.prm", sets=sets)
+    momentum, probe, energy = csv(d, "momentum"), csv(d, "probe_corner"), csv(d, "energy")
+    t, px = momentum["time"], momentum["block_px"]
+    stop = next(i for i in range(len(t)) if px[i] <= 1e-3 * px[0])
+    c.check(f"{name}: stopping time [s]", t[stop], v0 / (mu * g), 0.01, relative=True)
+    c.check(f"{name}: stopping distance [m]", probe["ux"][-1], v0 ** 2 / (2 * mu * g), 0.01, relative=True)
+    c.check_below(f"{name}: deepest penetration [m]", float(summary(d)["contact_floor_max_penetration"]), 1e-9)
+    c.check_below(f"{name}: highest lift of the bottom corner [m]", max(probe["uz"]), 1e-5)
+    c.check(f"{name}: energy taken by the contact [J]", energy["contact"][-1], 0.5 * mass * v0 ** 2, 0.02,
+            relative=True)
+    c.check_below(f"{name}: largest energy balance error", max(energy["balance_error"]), 0.01)
+par = run("slide_np2", "kinematic_block.prm", np=2)
+same = open(os.path.join(args.work_dir, "output", "slide", "kinematic_block", "energy.csv")).read() == \
+    open(os.path.join(par, "energy.csv")).read()
+c.check_true("slide: np = 2 writes np = 1's energy.csv, character for character", same)
+
+# 3. Sticking and sliding on a slope of tangential gravity.
+flat = ("Body block/Mesh/Upper corner=0.1, 0.1, 0.05", "Body block/Initial velocity=0, 0, 0",
+        "Contact pair floor/Static friction coefficient=0.5",
+        "Contact pair floor/Dynamic friction coefficient=0.3",
+        "Contact pair floor/Friction decay coefficient=100", "Simulation/End time=0.3")
+stuck = run("stuck", "kinematic_block.prm", sets=flat + (f"Simulation/Gravity={0.4 * g}, 0, {-g}",))
+slid = 0.5 * (0.4 - 0.3) * g * 0.3 ** 2
+c.check_below("0.4 m g < mu_s m g: displacement after 0.3 s / that at mu_d",
+              max(abs(u) for u in csv(stuck, "probe_corner")["ux"]) / slid, 0.01)
+slips = run("slips", "kinematic_block.prm", sets=flat + (f"Simulation/Gravity={0.6 * g}, 0, {-g}",))
+momentum = csv(slips, "momentum")
+t, px = momentum["time"], momentum["block_px"]
+i0 = next(i for i in range(len(t)) if t[i] >= 0.1)
+accel = (px[-1] - px[i0]) / (t[-1] - t[i0]) / (mass / 2)
+c.check("0.6 m g > mu_s m g: sliding acceleration [m/s^2]", accel, (0.6 - 0.3) * g, 0.02, relative=True)
+
+# 4. Bad input.
+code, out, err = run_anvil(args.anvil, os.path.join(here, "kinematic_block.prm"), cwd=args.work_dir,
+                           extra_args=["--check", "--set", "Contact pair floor/Normal damping=0.2"])
+lines = [l for l in err.splitlines() if l.strip()]
+c.check_true("'Normal damping' with kinematic contact: exit 2 and one error line",
+             code == 2 and len(lines) == 1 and "Normal damping" in lines[0], err.strip())
+c.finish()
