@@ -215,25 +215,13 @@ namespace anvil::Contact
               Utilities::MPI::sum(vs, mpi_communicator, vs);
           }
         place_analytic_shapes(p);
-        // (At most one surface of a pair is a rigid body's.)
-        const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
         contact_results[p] = pairs[p]->compute_forces(xs, vs, dt_previous, fs);
         // The springs in contact, or within reach by the next step, bound
         // the next step (replicated: the same on every rank).
         contact_frequency_squared =
           std::max(contact_frequency_squared, contact_results[p].frequency_squared);
-        if (shape_body >= 0)
-          {
-            rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
-                                             contact_results[p].shape_torque);
-          }
+        record_result(p);
         springs_across_partitions += contact_results[p].n_springs_across_partitions;
-        if (run_maxima.size() != pairs.size())
-          run_maxima.assign(pairs.size(), {{0., 0., 0.}});
-        auto &m = run_maxima[p];
-        m[0]    = std::max(m[0], contact_results[p].max_penetration);
-        m[1]    = std::max(m[1], contact_results[p].max_penetration_ratio);
-        m[2]    = std::max(m[2], contact_results[p].energy);
         // Every rank has the whole pair's friction work.
         energies.friction += contact_results[p].friction_work;
         for (const auto &[i, local] : owned_index[p])
@@ -301,20 +289,27 @@ namespace anvil::Contact
         auto &out = forces[p];
         std::fill(out.begin(), out.end(), 0.);
         contact_results[p] = pairs[p]->correct(xs, vs, fs, ws, dt_previous, dt, out);
-        const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
-        if (shape_body >= 0)
-          rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force,
-                                          contact_results[p].shape_torque);
-        if (run_maxima.size() != pairs.size())
-          run_maxima.assign(pairs.size(), {{0., 0., 0.}});
-        auto &m = run_maxima[p];
-        m[0]    = std::max(m[0], contact_results[p].max_penetration);
-        m[1]    = std::max(m[1], contact_results[p].max_penetration_ratio);
-        m[2]    = std::max(m[2], contact_results[p].energy);
+        record_result(p);
         for (const auto &[i, local] : owned_index[p])
           for (unsigned int d = 0; d < 3; ++d)
             force.local_element(local + d) += out[3 * i + d];
       }
+  }
+
+
+  // A pair's result: the reaction on a rigid body's analytic shape (at
+  // most one surface of a pair is a rigid body's), the run's maxima.
+  void ContactPairs::record_result(const unsigned int p)
+  {
+    const int shape_body = analytic_body[p][0] >= 0 ? analytic_body[p][0] : analytic_body[p][1];
+    if (shape_body >= 0)
+      rigid_bodies.add_shape_reaction(shape_body, contact_results[p].shape_force, contact_results[p].shape_torque);
+    if (run_maxima.size() != pairs.size())
+      run_maxima.assign(pairs.size(), {{0., 0., 0.}});
+    auto &m = run_maxima[p];
+    m[0]    = std::max(m[0], contact_results[p].max_penetration);
+    m[1]    = std::max(m[1], contact_results[p].max_penetration_ratio);
+    m[2]    = std::max(m[2], contact_results[p].energy);
   }
 
 

@@ -339,31 +339,8 @@ namespace anvil::Contact
   void PenaltyContact::setup(const std::vector<SegmentDescription> &first,
                              const std::vector<SegmentDescription> &second)
   {
-    // Order nodes by reference coordinates so that the evaluation order
-    // does not depend on the dof numbering (and so on the partitioning).
-    // The body index is part of the key: nodes of the two bodies may
-    // coincide in the reference configuration.
-    std::map<std::array<double, 4>, unsigned long> by_position;
-    std::map<unsigned long, bool>                  dof_on_first;
-    for (unsigned int s = 0; s < 2; ++s)
-      for (const auto &seg : (s == 0 ? first : second))
-        for (unsigned int v = 0; v < 4; ++v)
-          {
-            by_position[{{double(s),
-                          seg.reference_position[3 * v],
-                          seg.reference_position[3 * v + 1],
-                          seg.reference_position[3 * v + 2]}}] = seg.x_dof[v];
-            dof_on_first[seg.x_dof[v]] = (s == 0);
-          }
-    dofs.clear();
-    for (const auto &[p, d] : by_position)
-      dofs.push_back(d);
     std::map<unsigned long, unsigned int> index;
-    for (unsigned int i = 0; i < dofs.size(); ++i)
-      index[dofs[i]] = i;
-    on_first.resize(dofs.size());
-    for (unsigned int i = 0; i < dofs.size(); ++i)
-      on_first[i] = dof_on_first[dofs[i]];
+    order_pair_nodes(first, second, dofs, on_first, index);
 
     for (unsigned int s = 0; s < 2; ++s)
       {

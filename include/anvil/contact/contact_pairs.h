@@ -94,6 +94,9 @@ namespace anvil::Contact
     /** Place the analytic shapes of the rigid bodies of pair @p p (at n+1,
         like the positions; their velocities are the half-step ones). */
     void place_analytic_shapes(unsigned int p);
+    /** After pair @p p's evaluation: the reaction on its analytic shape,
+        the run's maxima. */
+    void record_result(unsigned int p);
 
     std::vector<std::unique_ptr<Algorithm>> pairs;
     std::vector<unsigned char>              inactive;

@@ -217,6 +217,45 @@ namespace anvil::Contact
   };
 
 
+  /**
+   * The pair's nodes (x-dof indices) of the two surfaces' segments in an
+   * order fixed by (surface, reference coordinates), so that an evaluation
+   * in that order does not depend on the dof numbering (and so on the
+   * partitioning); the surface is part of the key, as nodes of the two
+   * bodies may coincide. Sets @p dofs, @p on_first (per node) and @p index
+   * (x-dof to position in @p dofs).
+   */
+  template <typename Flag>
+  void order_pair_nodes(const std::vector<SegmentDescription>  &first,
+                        const std::vector<SegmentDescription>  &second,
+                        std::vector<unsigned long>             &dofs,
+                        std::vector<Flag>                      &on_first,
+                        std::map<unsigned long, unsigned int>  &index)
+  {
+    std::map<std::array<double, 4>, unsigned long> by_position;
+    std::map<unsigned long, bool>                  dof_on_first;
+    for (unsigned int s = 0; s < 2; ++s)
+      for (const auto &seg : (s == 0 ? first : second))
+        for (unsigned int v = 0; v < 4; ++v)
+          {
+            by_position[{{double(s),
+                          seg.reference_position[3 * v],
+                          seg.reference_position[3 * v + 1],
+                          seg.reference_position[3 * v + 2]}}] = seg.x_dof[v];
+            dof_on_first[seg.x_dof[v]] = (s == 0);
+          }
+    dofs.clear();
+    for (const auto &[p, d] : by_position)
+      dofs.push_back(d);
+    index.clear();
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      index[dofs[i]] = i;
+    on_first.resize(dofs.size());
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      on_first[i] = dof_on_first[dofs[i]];
+  }
+
+
   struct AlgorithmEntry
   {
     std::string                                     description;
