@@ -482,22 +482,24 @@ namespace anvil::Deck
     {
       std::string first, second;
       double      mu;
+      std::string algorithm;
     };
     std::vector<Pair> pairs;
-    auto add_pair = [&](const std::string &a, const std::string &b, const double mu) {
+    auto add_pair = [&](const std::string &a, const std::string &b, const double mu,
+                        const std::string &algorithm) {
       if (a == b)
         return;
       for (const auto &p : pairs)
         if ((p.first == a && p.second == b) || (p.first == b && p.second == a))
           return;
-      pairs.push_back({a, b, mu});
+      pairs.push_back({a, b, mu, algorithm});
     };
     if (general_all)
       {
         const double mu = friction_of.count(general_property) ? friction_of[general_property] : 0;
         for (unsigned int i = 0; i < bodies.size(); ++i)
           for (unsigned int j = i + 1; j < bodies.size(); ++j)
-            add_pair(bodies[i].name, bodies[j].name, mu);
+            add_pair(bodies[i].name, bodies[j].name, mu, "penalty");
         w.differ("general contact: penalty pairs between the bodies (Anvil's node-to-segment penalty, not "
                  "ABAQUS's kinematic-penalty general contact)");
       }
@@ -507,7 +509,14 @@ namespace anvil::Deck
         const double   mu = friction_of.count(MeshFile::key(kw.get("INTERACTION"))) ?
                               friction_of[MeshFile::key(kw.get("INTERACTION"))] :
                               0;
-        w.differ("*Contact Pair: Anvil's penalty pairs between the bodies that hold the surfaces");
+        // ABAQUS/Explicit enforces a contact pair kinematically unless it
+        // says MECHANICAL CONSTRAINT=PENALTY.
+        const std::string constraint = MeshFile::key(kw.get("MECHANICAL CONSTRAINT"));
+        if (!constraint.empty() && constraint != "KINEMATIC" && constraint != "PENALTY")
+          unsupported(kw, "mechanical constraint=" + constraint + " is not supported (allowed: KINEMATIC, PENALTY)");
+        const std::string algorithm = constraint == "PENALTY" ? "penalty" : "kinematic";
+        w.differ("*Contact Pair: Anvil's node-to-segment " + algorithm +
+                 " pairs between the bodies that hold the surfaces");
         for (const auto &line : kw.data)
           {
             const auto f = MeshFile::Abaqus::fields(line.text);
@@ -528,7 +537,7 @@ namespace anvil::Deck
                   throw InputError(line.where() + "surface '" + f[s] + "' must lie on one body");
                 side[s] = bodies[owners[0]].name;
               }
-            add_pair(side[0], side[1], mu);
+            add_pair(side[0], side[1], mu, algorithm);
           }
       }
 
@@ -846,6 +855,7 @@ namespace anvil::Deck
         w.enter("Contact pair " + p.first + "_" + p.second);
         w.set("First body", p.first);
         w.set("Second body", p.second);
+        w.set("Algorithm", p.algorithm);
         w.set("Static friction coefficient", p.mu);
         w.set("Dynamic friction coefficient", p.mu);
         w.leave();
