@@ -18,7 +18,8 @@ Cases (doc/accuracy.md says what each reference is and how it was chosen):
 Settings varied (one at a time; the others at their defaults): integration
 rule (one point with viscous or stiffness hourglass control, full), the
 hourglass coefficient, the mesh (three sizes), the time-step safety factor,
-the contact penalty factor, the formulation (updated or total Lagrangian)
+the contact penalty factor and the enforcement (penalty or kinematic), the
+formulation (updated or total Lagrangian)
 and bulk viscosity (on or off).
 
 Writes OUTPUT/CASE.csv (one row per run), OUTPUT/CASE.png (error against
@@ -90,6 +91,7 @@ class Case:
         v += [("mesh", "coarser mesh", self.mesh(-1)), ("mesh", "finer mesh", self.mesh(+1))]
         v += [("step", f"safety factor {f}", [f"Simulation/Time step safety factor={f}"]) for f in (0.5, 0.7)]
         v += [("penalty", f"penalty factor {f:.2g}", pair(f)) for f in (self.penalty / 3, self.penalty * 10)]
+        v += [("contact", "kinematic contact", [f"Contact pair {p}/Algorithm=kinematic" for p in self.pairs])]
         v += [("formulation", "total Lagrangian", body("Formulation", "total Lagrangian"))]
         v += [("bulk viscosity", "no bulk viscosity",
                body("Bulk viscosity/Linear coefficient", 0) + body("Bulk viscosity/Quadratic coefficient", 0))]

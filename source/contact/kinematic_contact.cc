@@ -557,7 +557,12 @@ namespace anvil::Contact
 
   ANVIL_REGISTER_CONTACT_ALGORITHM(KinematicContact,
                                    "kinematic",
-                                   "kinematic enforcement (ABAQUS/Explicit's default): the "
-                                   "penetration of each step's predicted motion removed exactly, "
-                                   "momentum conserved, no effect on the time step")
+                                   "kinematic enforcement (ABAQUS/Explicit's default for contact "
+                                   "pairs): the penetration of each step's predicted motion removed, "
+                                   "momentum conserved, the time step untouched; 'Penalty scale "
+                                   "factor' does not apply. Against rigid impactors and in stiff, "
+                                   "short impacts it removes the penalty's compliance (doc/accuracy.md: "
+                                   "a rigid sphere's Hertz force +1.5 % against -27 % at the default "
+                                   "penalty factor, two unequal rods' contact time +0.45 % against "
+                                   "+4.9 %).")
 } // namespace anvil::Contact
