@@ -272,6 +272,23 @@ namespace anvil::Contact
                       "rigid impactor 1 was closer to the reference (the "
                       "Taylor bar's foot, Hertz) at 1.1 times the steps "
                       "(doc/accuracy.md). Units: none.");
+    prm.declare_entry("Penalty stiffness",
+                      "element",
+                      Patterns::Selection("element|nodal mass"),
+                      "'element': seed Eq. (59), k from the pressed element's "
+                      "bulk modulus and size ('Penalty scale factor'); "
+                      "'nodal mass': as LS-DYNA's SOFT = 1, the larger of that "
+                      "and s m / dt^2 with the slave node's mass m, the last "
+                      "time step dt and s = 'Mass penalty scale factor': stiff "
+                      "where the nodes are heavy (a soft material against a "
+                      "hard one), and a mass-based spring never lowers the "
+                      "time step (with a time step safety factor of at most "
+                      "0.9).");
+    prm.declare_entry("Mass penalty scale factor",
+                      "0.1",
+                      Patterns::Double(0., 0.4),
+                      "s of 'Penalty stiffness = nodal mass' (LS-DYNA's SOFSCL): "
+                      "the spring's frequency is sqrt(s) / dt. Units: none.");
     prm.declare_entry("Static friction coefficient",
                       "0",
                       Patterns::Double(0.),
@@ -308,7 +325,9 @@ namespace anvil::Contact
 
   void PenaltyContact::parse_parameters(dealii::ParameterHandler &prm)
   {
-    penalty_factor = prm.get_double("Penalty scale factor");
+    penalty_factor     = prm.get_double("Penalty scale factor");
+    mass_penalty       = prm.get("Penalty stiffness") == "nodal mass";
+    mass_penalty_scale = prm.get_double("Mass penalty scale factor");
     symmetric      = prm.get_bool("Symmetric");
     static_friction  = prm.get_double("Static friction coefficient");
     dynamic_friction = prm.get_double("Dynamic friction coefficient");
@@ -324,7 +343,7 @@ namespace anvil::Contact
 
   std::string PenaltyContact::parse_note() const
   {
-    if (!(penalty_factor > 0.4))
+    if (mass_penalty || !(penalty_factor > 0.4))
       return "";
     std::ostringstream s;
     s << "Warning: contact pair '" << name << "': penalty scale factor " << penalty_factor
@@ -556,6 +575,8 @@ namespace anvil::Contact
                                                std::vector<double>       &f)
   {
     ContactResult result;
+    if (dt > 0)
+      penalty_dt = dt;
     // A rigid body's analytic shape: the other body's nodes against it
     // (which refreshes the geometry near the shape; it clears its own
     // nodes' spring loads).
@@ -1024,8 +1045,10 @@ namespace anvil::Contact
           continue;
         const Vec    nn = {normal[0], normal[1], normal[2]};
         bool         floored = false;
-        const double k       = penalty_factor * own_stiffness(slave, s, nn, &floored);
-        spring_load[s] += k; // the shape does not move with the spring
+        bool         bounds_step = true;
+        const double k           = spring_stiffness(
+          s, penalty_factor * own_stiffness(slave, s, nn, &floored), floored, bounds_step);
+        spring_load[s] += bounds_step ? k : 0.; // the shape does not move with the spring
         if (!(l < 0))
           continue;
         Vec vr = {0, 0, 0};
@@ -1615,8 +1638,13 @@ namespace anvil::Contact
         // slave side's (the rigid body's own elements say nothing of the
         // contact stiffness).
         bool         floored = true;
-        const double k       = penalty_factor * (master.rigid ? own_stiffness(slave, s, nn, &floored) :
-                                                          master.modulus[chosen] * tributary_area(slave, s, nn));
+        bool         bounds_step = true;
+        const double k           = spring_stiffness(
+          s,
+          penalty_factor * (master.rigid ? own_stiffness(slave, s, nn, &floored) :
+                                           master.modulus[chosen] * tributary_area(slave, s, nn)),
+          floored,
+          bounds_step);
         // The stable step: a node within the thickness of its partner's
         // element may be in contact by the next step, so its spring counts
         // (see stable_frequency_squared()): the spring k (n . (u_s - sum_j
@@ -1629,7 +1657,7 @@ namespace anvil::Contact
         touch.flags   = 0;
         for (unsigned int j = 0; j < 4; ++j)
           touch.phi[j] = phi[j];
-        touch.k        = k;
+        touch.k        = bounds_step ? k : 0.; // (mass-based springs do not bound the step)
         touch.force[0] = touch.force[1] = touch.force[2] = 0;
         if (master.rigid || slave.rigid)
           touch_normals.push_back({{l, nn.x, nn.y, nn.z}});

@@ -616,6 +616,8 @@ namespace anvil::Deck
       bool           symmetric;
       double         factor, fs, fd, dc, vdc;
       const Keyword *keyword;
+      /** SOFT = 1: SOFSCL (0: SOFT = 0). */
+      double         sofscl = 0;
     };
     std::vector<Pair> pairs;
     for (const Keyword *kwp : contacts)
@@ -672,8 +674,20 @@ namespace anvil::Deck
         const Card  &cc  = kw.cards.size() > 2 ? kw.cards[2] : kw.cards[0];
         const double sfs = kw.cards.size() > 2 ? real(c[0], cc, "SFS", 1) : 1;
         const double sfm = kw.cards.size() > 2 ? real(c[1], cc, "SFM", 1) : 1;
-        if (kw.cards.size() > 3 && integer(d[0], kw.cards[3], "SOFT") != 0)
-          not_default(kw, "SOFT (Anvil's penalty is LS-DYNA's SOFT = 0)", d[0]);
+        // Optional card A: SOFT = 0, or 1 (the penalty from the nodal
+        // masses and the step, SOFSCL 0.1 by default).
+        const long soft = kw.cards.size() > 3 ? integer(d[0], kw.cards[3], "SOFT") : 0;
+        if (soft != 0 && soft != 1)
+          not_default(kw, "SOFT (allowed: 0, 1)", d[0]);
+        double sofscl = 0;
+        if (soft == 1)
+          {
+            sofscl = real(d[1], kw.cards[3], "SOFSCL", 0.1);
+            if (sofscl == 0)
+              sofscl = 0.1;
+            if (!(sofscl <= 0.4))
+              not_default(kw, "SOFSCL above 0.4", d[1]);
+          }
         if (sfs != sfm)
           w.differ("*" + kw.name + ": one penalty factor SLSFAC x SFS for both sides (SFM differs)");
         const bool symmetric = kw.name.find("SURFACE_TO_SURFACE") != std::string::npos;
@@ -687,7 +701,7 @@ namespace anvil::Deck
                 });
                 if (!seen)
                   pairs.push_back({parts[m].body, parts[s].body, symmetric,
-                                   (sfs == 0 ? 1 : sfs) * slsfac, fs, fd, dc, vdc, &kw});
+                                   (sfs == 0 ? 1 : sfs) * slsfac, fs, fd, dc, vdc, &kw, sofscl});
               }
       }
 
@@ -1085,6 +1099,11 @@ namespace anvil::Deck
         w.set("Second body", pr.second);
         w.set("Symmetric", pr.symmetric ? "true" : "false");
         w.set("Penalty scale factor", pr.factor);
+        if (pr.sofscl > 0)
+          {
+            w.set("Penalty stiffness", "nodal mass");
+            w.set("Mass penalty scale factor", pr.sofscl);
+          }
         w.set("Static friction coefficient", pr.fs);
         w.set("Dynamic friction coefficient", pr.fd);
         w.set("Friction decay coefficient", pr.dc);

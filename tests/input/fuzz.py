@@ -36,7 +36,7 @@ from anvil_test import Checker, arguments
 args = arguments()
 c = Checker("fuzz: mutated scenes give exit 0 or one error line and exit 2")
 rng = random.Random(20261124)
-cases_check, cases_run = 40, 8
+cases_check, cases_run = 32, 8
 
 source = os.path.join(args.source_dir, "prm")
 scenes = sorted(os.path.relpath(p, source) for p in glob.glob(os.path.join(source, "*", "*.prm")))
@@ -203,8 +203,8 @@ if gmsh:
                       capture_output=True).returncode == 0:
         with open(target, encoding="latin-1") as f:
             msh_text = f.read()
-cases_inp, cases_msh = 16, 16 if msh_text else 0
-cases_k, cases_whole = 20, 10
+cases_inp, cases_msh = 12, 12 if msh_text else 0
+cases_k, cases_whole = 16, 8
 
 
 def mutate_mesh(lines):

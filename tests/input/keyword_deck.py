@@ -420,6 +420,15 @@ code, out, err = run_anvil(args.anvil, "gravity.inp", cwd=w, extra_args=("--tran
 c.check_true("*Dload GRAV 9.81 towards (0, 0, -2): 'Gravity = 0, 0, -9.81'", code == 0 and
              "set Gravity = 0, 0, -9.81" in out, err.strip()[-300:])
 
+# LS-DYNA's SOFT = 1: the penalty from the nodal masses and the step.
+with open(os.path.join(w, "soft.k"), "w") as f:
+    f.write(keyword_deck("free")["deck_free.k"].replace("0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n",
+                                                        "0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n1,0.2\n", 1))
+code, out, err = run_anvil(args.anvil, "soft.k", cwd=w, extra_args=("--translate",))
+c.check_true("SOFT = 1, SOFSCL = 0.2: 'Penalty stiffness = nodal mass', 'Mass penalty scale factor = 0.2'",
+             code == 0 and "set Penalty stiffness = nodal mass" in out and "set Mass penalty scale factor = 0.2" in out,
+             (out + err).strip()[-300:])
+
 # @sect{What is not supported: one line, exit 2}
 base = keyword_deck("free")
 errors = {
@@ -427,7 +436,7 @@ errors = {
     "an unsupported element formulation": ("*section_solid_title\nsolid\n1,1\n", "*section_solid_title\nsolid\n1,10\n",
                                            "ELFORM"),
     "mass scaling": ("*control_timestep\n0,0.8\n", "*control_timestep\n0,0.8,0,0,-1e-6\n", "DT2MS"),
-    "SOFT = 1 contact": ("0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n", "0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n1\n", "SOFT"),
+    "SOFT = 2 contact": ("0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n", "0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n2\n", "SOFT"),
     "a bad number": ("*control_termination\n0.0002\n", "*control_termination\n0.0.2\n", "is not a number"),
     "a missing include": ("deck_free_mesh.k\n", "no_such_mesh.k\n", "does not exist"),
 }

@@ -165,6 +165,12 @@ namespace anvil::Contact
     }
 
     double       penalty_factor = 0.1;
+    /** 'Penalty stiffness = nodal mass' (LS-DYNA's SOFT = 1): k the larger
+        of the element-based one and s m / dt^2 with the slave node's mass
+        m and the last step dt, s = 'Mass penalty scale factor'; the
+        mass-based springs do not bound the step. */
+    bool   mass_penalty       = false;
+    double mass_penalty_scale = 0.1;
     bool         symmetric      = true;
     /** Coulomb friction, seed Eq. (62): mu = mu_d + (mu_s - mu_d)
         exp(-C |v_slip|). */
@@ -270,6 +276,33 @@ namespace anvil::Contact
                                 double                     l,
                                 const std::vector<double> &x,
                                 std::vector<double>       &f);
+
+    /** The spring of slave node @p s: the element-based stiffness
+        @p element_k, or with 'Penalty stiffness = nodal mass' the larger
+        of it and s m / dt^2 (as LS-DYNA's SOFT = 1); a mass-based spring
+        has no gradient term (@p floored) and does not bound the step
+        (@p bounds_step false). */
+    double spring_stiffness(unsigned int s, double element_k, bool &floored, bool &bounds_step) const
+    {
+      bounds_step = !mass_penalty;
+      if (!mass_penalty)
+        return element_k;
+      // (Before the first step there is no step to scale by: the
+      // element's spring, which the first step's mass-based one replaces.)
+      if (!(penalty_dt > 0))
+        return element_k;
+      bounds_step = true;
+      const double m  = s < node_mass.size() ? node_mass[s] : 0.;
+      const double km = penalty_dt > 0 ? mass_penalty_scale * m / (penalty_dt * penalty_dt) : 0.;
+      if (!(km > element_k))
+        return element_k;
+      floored     = true;
+      bounds_step = false;
+      return km;
+    }
+    /** The last step the pair was evaluated after (the mass-based
+        stiffness). */
+    double penalty_dt = 0;
 
     std::vector<unsigned long> dofs;
     std::vector<bool>          on_first;
