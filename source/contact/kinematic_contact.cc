@@ -153,15 +153,7 @@ namespace anvil::Contact
     for (unsigned int s = 0; s < 2; ++s)
       {
         const auto &segs = (s == 0 ? first : second);
-        std::vector<std::pair<std::array<unsigned int, 4>, unsigned int>> order;
-        for (unsigned int k = 0; k < segs.size(); ++k)
-          {
-            std::array<unsigned int, 4> n;
-            for (unsigned int v = 0; v < 4; ++v)
-              n[v] = index[segs[k].x_dof[v]];
-            order.emplace_back(n, k);
-          }
-        std::sort(order.begin(), order.end());
+        const auto order = order_segments(segs, index);
         Surface &surf = surface[s];
         surf.segments.clear(), surf.element.clear(), surf.active.clear(), surf.depth.clear();
         surf.max_depth = 0, surf.min_depth = 1e300;

@@ -27,6 +27,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <map>
@@ -253,6 +254,27 @@ namespace anvil::Contact
     on_first.resize(dofs.size());
     for (unsigned int i = 0; i < dofs.size(); ++i)
       on_first[i] = dof_on_first[dofs[i]];
+  }
+
+
+  /**
+   * The segments of @p segs as pair-node indices (@p index from
+   * order_pair_nodes()), each with its position in @p segs, sorted by
+   * those indices: an order that does not depend on the partitioning.
+   */
+  inline std::vector<std::pair<std::array<unsigned int, 4>, unsigned int>>
+  order_segments(const std::vector<SegmentDescription> &segs, std::map<unsigned long, unsigned int> &index)
+  {
+    std::vector<std::pair<std::array<unsigned int, 4>, unsigned int>> order;
+    for (unsigned int k = 0; k < segs.size(); ++k)
+      {
+        std::array<unsigned int, 4> n;
+        for (unsigned int v = 0; v < 4; ++v)
+          n[v] = index[segs[k].x_dof[v]];
+        order.emplace_back(n, k);
+      }
+    std::sort(order.begin(), order.end());
+    return order;
   }
 
 
