@@ -378,10 +378,34 @@ def dormant_rod_scene():
             + "subsection Contact pair far_pair\n  set First body  = rod_b\n  set Second body = far\nend\n")
 
 
-def hertz_ball_scene(inp, R, E, nu, rho, v, penalty=1.0, end_time=0.012):
+def check_hertz_speeds(c, speeds, hertz, run, tolerance):
+    """Hertz's impact at each of 'speeds': run(v) gives (peak force,
+    contact time, largest balance error), hertz(v) the closed form's (F_max,
+    t_c). Checks each within 'tolerance' (relative), the balance below 1 %
+    and the exponents of v between the first and last speed within 0.02 of
+    Hertz's 6/5 and -1/5; returns {v: run(v)}."""
+    results = {}
+    for v in speeds:
+        F_max, t_c = hertz(v)
+        peak, duration, balance = results[v] = run(v)
+        print(f"  {v} m/s: Hertz {F_max:.3f} N, {1000 * t_c:.3f} ms; Anvil {peak:.3f} N "
+              f"({peak / F_max - 1:+.4f}), {1000 * duration:.3f} ms ({duration / t_c - 1:+.4f})")
+        c.check(f"{v} m/s: peak force [N]", peak, F_max, tolerance, relative=True)
+        c.check(f"{v} m/s: contact time [s]", duration, t_c, tolerance, relative=True)
+        c.check_below(f"{v} m/s: largest energy balance error", balance, 0.01)
+    lo, hi = speeds[0], speeds[-1]
+    span = math.log(hi / lo)
+    c.check("exponent of v in the peak force", math.log(results[hi][0] / results[lo][0]) / span, 1.2, 0.02)
+    c.check("exponent of v in the contact time", math.log(results[hi][1] / results[lo][1]) / span, -0.2, 0.02)
+    return results
+
+
+def hertz_ball_scene(inp, R, E, nu, rho, v, penalty=None, end_time=0.012):
     """Scene text of an elastic quarter ball (mesh file 'inp', radius R,
     symmetry planes x = 0 and y = 0) dropped at v on an exact rigid plane
-    just below it (Hertz's problem), history every 2e-5 s."""
+    just below it (Hertz's problem), history every 2e-5 s; contact at the
+    default enforcement, or the penalty at the factor 'penalty'."""
+    contact = "" if penalty is None else f"  set Algorithm = penalty\n  set Penalty scale factor = {penalty}\n"
     return f"""# Elastic quarter sphere dropped on a rigid plane (Hertz).
 set Bodies = floor, ball
 set Contact pairs = hit
@@ -414,6 +438,5 @@ end
 {plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
   set First body = floor
   set Second body = ball
-  set Penalty scale factor = {penalty}
-end
+{contact}end
 """

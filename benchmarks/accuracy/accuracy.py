@@ -82,7 +82,8 @@ class Case:
 
     def variations(self):
         body = lambda entry, value: [f"Body {b}/{entry}={value}" for b in self.deformable]
-        pair = lambda value: [f"Contact pair {p}/Penalty scale factor={value}" for p in self.pairs]
+        pair = lambda value: [a for p in self.pairs for a in (f"Contact pair {p}/Algorithm=penalty",
+                                                                f"Contact pair {p}/Penalty scale factor={value}")]
         v = [("defaults", "defaults", [])]
         v += [("integration", "one point, stiffness hourglass", body("Hourglass control/Type", "stiffness")),
               ("integration", "full integration", body("Integration", "full"))]
@@ -91,7 +92,8 @@ class Case:
         v += [("mesh", "coarser mesh", self.mesh(-1)), ("mesh", "finer mesh", self.mesh(+1))]
         v += [("step", f"safety factor {f}", [f"Simulation/Time step safety factor={f}"]) for f in (0.5, 0.7)]
         v += [("penalty", f"penalty factor {f:.2g}", pair(f)) for f in (self.penalty / 3, self.penalty * 10)]
-        v += [("contact", "kinematic contact", [f"Contact pair {p}/Algorithm=kinematic" for p in self.pairs])]
+        v += [("contact", "kinematic contact", [f"Contact pair {p}/Algorithm=kinematic" for p in self.pairs]),
+              ("contact", f"penalty contact at {self.penalty:.2g}", pair(self.penalty))]
         v += [("formulation", "total Lagrangian", body("Formulation", "total Lagrangian"))]
         v += [("bulk viscosity", "no bulk viscosity",
                body("Bulk viscosity/Linear coefficient", 0) + body("Bulk viscosity/Quadratic coefficient", 0))]

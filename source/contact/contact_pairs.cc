@@ -49,6 +49,7 @@ namespace anvil::Contact
     any_kinematic = false;
     contact_results.assign(n_pairs, {});
     analytic_body.assign(n_pairs, {{-1, -1}});
+    pair_body.clear();
     contact_frequency_squared = 0;
     auto body_index = [&](const std::string &name) {
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -61,6 +62,7 @@ namespace anvil::Contact
         std::vector<Contact::SegmentDescription> segments[2];
         const unsigned int body[2] = {body_index(pairs[p]->first_body),
                                       body_index(pairs[p]->second_body)};
+        pair_body.push_back({{body[0], body[1]}});
         for (unsigned int s = 0; s < 2; ++s)
           {
             std::vector<double> local;
@@ -361,6 +363,71 @@ namespace anvil::Contact
   }
 
 
+  // The contact's approach, for the penalty's note at the end: how far the
+  // two bodies' centres of mass moved towards each other along the pair's
+  // force since it began to act (the rigid sphere's delta in Hertz's
+  // problem; v L / 2c at the middle of two equal rods' contact). The
+  // springs' penetration over it is the share of the deformation at
+  // contact that is the penalty's own compliance. Only at history rows,
+  // only with penalty pairs.
+  void ContactPairs::prepare_history()
+  {
+    bool any_penalty = false;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      any_penalty |= !pairs[p]->kinematic() && !inactive[p];
+    if (!any_penalty)
+      return;
+    const auto       &bodies = get_bodies();
+    const VectorType &x = get_position(), &X = get_reference_position(), &m = get_mass();
+    const auto       &dof_body = get_dof_body(), &dof_component = get_dof_component();
+    const auto       &rigid_dof = get_rigid_dof();
+    // Per body: sum m u (three components) and sum m.
+    std::vector<double> moments(4 * bodies.size(), 0.);
+    for (unsigned int i = 0; i < x.locally_owned_size(); ++i)
+      if (rigid_dof.empty() || !rigid_dof[i])
+        {
+          const unsigned int b = dof_body[i];
+          moments[4 * b + dof_component[i]] += m.local_element(i) * (x.local_element(i) - X.local_element(i));
+          if (dof_component[i] == 0)
+            moments[4 * b + 3] += m.local_element(i);
+        }
+    Utilities::MPI::sum(moments, get_mpi_communicator(), moments);
+    auto displacement = [&](const unsigned int b) {
+      Tensor<1, 3> d;
+      if (bodies[b].is_rigid())
+        return Tensor<1, 3>(bodies[b].rigid.centre - bodies[b].rigid.reference_centre);
+      if (moments[4 * b + 3] > 0)
+        for (unsigned int k = 0; k < 3; ++k)
+          d[k] = moments[4 * b + k] / moments[4 * b + 3];
+      return d;
+    };
+    if (approach.size() != pairs.size())
+      approach.assign(pairs.size(), {{0, 0, 0, 0, 0, 0, 0, 0}});
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        if (pairs[p]->kinematic() || inactive[p])
+          continue;
+        auto              &a = approach[p];
+        const Tensor<1, 3> f({contact_results[p].force_on_first[0], contact_results[p].force_on_first[1],
+                              contact_results[p].force_on_first[2]});
+        if (!(f.norm() > 0))
+          {
+            a[6] = 0;
+            continue;
+          }
+        const Tensor<1, 3> d[2] = {displacement(pair_body[p][0]), displacement(pair_body[p][1])};
+        if (a[6] == 0)
+          for (unsigned int k = 0; k < 3; ++k)
+            a[k] = d[0][k], a[3 + k] = d[1][k], a[6] = 1;
+        // The force on the first body pushes it away from the second.
+        Tensor<1, 3> moved;
+        for (unsigned int k = 0; k < 3; ++k)
+          moved[k] = (d[1][k] - a[3 + k]) - (d[0][k] - a[k]);
+        a[7] = std::max(a[7], moved * f / f.norm());
+      }
+  }
+
+
   void ContactPairs::write_history(const double t, double)
   {
     if (files.empty())
@@ -396,11 +463,17 @@ namespace anvil::Contact
         }
     // (A kinematic pair's energy is what it took from the bodies so far.)
     for (unsigned int p = 0; p < run_maxima.size(); ++p)
-      out << "contact_" << pairs[p]->name << "_max_penetration," << run_maxima[p][0] << '\n'
-          << "contact_" << pairs[p]->name << "_max_penetration_ratio," << run_maxima[p][1] << '\n'
-          << "contact_" << pairs[p]->name
-          << (pairs[p]->kinematic() ? "_energy_taken," : "_max_spring_energy,")
-          << (pairs[p]->kinematic() ? contact_results[p].energy : run_maxima[p][2]) << '\n';
+      {
+        out << "contact_" << pairs[p]->name << "_max_penetration," << run_maxima[p][0] << '\n'
+            << "contact_" << pairs[p]->name << "_max_penetration_ratio," << run_maxima[p][1] << '\n'
+            << "contact_" << pairs[p]->name
+            << (pairs[p]->kinematic() ? "_energy_taken," : "_max_spring_energy,")
+            << (pairs[p]->kinematic() ? contact_results[p].energy : run_maxima[p][2]) << '\n';
+        if (p < approach.size() && approach[p][7] > 0)
+          out << "contact_" << pairs[p]->name << "_max_approach," << approach[p][7] << '\n'
+              << "contact_" << pairs[p]->name << "_penetration_over_approach,"
+              << run_maxima[p][0] / approach[p][7] << '\n';
+      }
   }
 
 
@@ -427,6 +500,20 @@ namespace anvil::Contact
           if (E0 > 0)
             s << " (" << 100 * run_maxima[p][2] / E0 << " % of the initial energy)";
           s << '\n';
+          // The springs' compliance against the bodies' own deformation at
+          // contact; from 1 % on it is a measurable share of the answer.
+          if (p < approach.size() && approach[p][7] > 0)
+            {
+              const double share = run_maxima[p][0] / approach[p][7];
+              s << "  contact pair '" << pairs[p]->name << "': the deepest penetration is "
+                << std::setprecision(3) << 100 * share << " % of the contact's approach ("
+                << approach[p][7] << ", the bodies' centres of mass towards each other)";
+              if (share > 0.01)
+                s << ": the penalty springs' compliance is a measurable share of the deformation at "
+                     "contact ('Algorithm = kinematic' has none; a larger 'Penalty scale factor' "
+                     "shrinks it)";
+              s << '\n';
+            }
         }
     return s.str();
   }
@@ -435,7 +522,7 @@ namespace anvil::Contact
   void ContactPairs::serialize(StateArchive &ar)
   {
     ar &contact_frequency_squared &contact_results &positions &velocities &forces &springs_across_partitions
-      &run_maxima;
+      &run_maxima &approach;
     for (auto &c : pairs)
       c->serialize(ar);
   }

@@ -136,10 +136,21 @@ namespace anvil::Contact
                        "': 'Static friction coefficient' (" + std::to_string(static_friction) +
                        ") must not be below 'Dynamic friction coefficient' (" +
                        std::to_string(dynamic_friction) + ")");
-    if (prm.get_double("Normal damping") > 0)
-      throw InputError("subsection 'Contact pair " + name +
-                       "': 'Normal damping' is for 'Algorithm = penalty'; kinematic contact "
-                       "has no springs to damp (set it to 0)");
+    // The penalty's own entries would be ignored here: a scene that sets
+    // one was written for the penalty.
+    const bool damping   = prm.get_double("Normal damping") > 0;
+    const bool factor    = prm.get_double("Penalty scale factor") != 0.1;
+    const bool stiffness = prm.get("Penalty stiffness") != "element";
+    const bool mass      = prm.get_double("Mass penalty scale factor") != 0.1;
+    if (damping || factor || stiffness || mass)
+      throw InputError("subsection 'Contact pair " + name + "': '" +
+                       (damping   ? "Normal damping" :
+                        factor    ? "Penalty scale factor" :
+                        stiffness ? "Penalty stiffness" :
+                                    "Mass penalty scale factor") +
+                       "' is for 'Algorithm = penalty'; this pair's contact is kinematic (no "
+                       "springs; 'automatic' chooses it for a pair with a rigid body): set "
+                       "'Algorithm = penalty' to use the entry, or remove it");
   }
 
 

@@ -1097,6 +1097,7 @@ namespace anvil::Deck
         w.enter("Contact pair " + pr.first + "_" + pr.second);
         w.set("First body", pr.first);
         w.set("Second body", pr.second);
+        w.set("Algorithm", "penalty");
         w.set("Symmetric", pr.symmetric ? "true" : "false");
         w.set("Penalty scale factor", pr.factor);
         if (pr.sofscl > 0)
@@ -1118,6 +1119,7 @@ namespace anvil::Deck
           w.enter("Contact pair " + wall.name + "_" + parts[pid].body);
           w.set("First body", wall.name);
           w.set("Second body", parts[pid].body);
+          w.set("Algorithm", "penalty");
           w.set("Penalty scale factor", 1.0);
           w.set("Static friction coefficient", wall.friction);
           w.set("Dynamic friction coefficient", wall.friction);

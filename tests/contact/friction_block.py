@@ -100,6 +100,7 @@ subsection Body block
   set Initial velocity = {v0}, 0, 0
 end
 subsection Contact pair floor
+  set Algorithm = penalty
   set First body = plane
   set Second body = block
   set Symmetric = {'true' if deformable_plane else 'false'}

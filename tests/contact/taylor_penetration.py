@@ -59,6 +59,7 @@ subsection Body bar
   set Initial velocity = {speed}, 0, 0
 end
 subsection Contact pair impact
+  set Algorithm = penalty
   set Penalty scale factor = {factor}
 end
 """)

@@ -47,6 +47,8 @@ namespace anvil::Contact
         through frequency_squared(), not through the returned value. */
     double add_forces(double dt) override;
     std::string describe() const override;
+    /** The penalty pairs' approach (collective, at each history row). */
+    void   prepare_history() override;
     void   write_history(double t, double dt) override;
     void   write_summary(std::ostream &out) const override;
     void serialize(StateArchive &ar) override;
@@ -123,5 +125,11 @@ namespace anvil::Contact
     /** Over the run, per pair: the deepest penetration, its largest ratio
         to the pressed element's thickness, the largest spring energy. */
     std::vector<std::array<double, 3>> run_maxima;
+    /** Per pair: its two bodies (indices into the scene's bodies). */
+    std::vector<std::array<unsigned int, 2>> pair_body;
+    /** Per penalty pair, the contact's approach (prepare_history()): the
+        two bodies' centre-of-mass displacements when its force began
+        (0-2, 3-5), whether it acts (6), the largest approach so far (7). */
+    std::vector<std::array<double, 8>> approach;
   };
 } // namespace anvil::Contact

@@ -296,8 +296,12 @@ namespace anvil::Contact
   void declare_parameters(dealii::ParameterHandler &prm);
 
   /** The algorithm the pair @p pair_name selects, its names set and its
-      entries read (the pair's subsection is the current one). */
-  std::unique_ptr<Algorithm> create(dealii::ParameterHandler &prm, const std::string &pair_name);
+      entries read (the pair's subsection is the current one). 'automatic'
+      (the default) is 'kinematic' when @p is_rigid says one of the two
+      bodies is rigid, 'penalty' between two deformable bodies. */
+  std::unique_ptr<Algorithm> create(dealii::ParameterHandler                      &prm,
+                                    const std::string                             &pair_name,
+                                    const std::function<bool(const std::string &)> &is_rigid);
 } // namespace anvil::Contact
 
 /**
