@@ -25,7 +25,9 @@ removed exactly, momentum conserved, friction by seed Eqs. (61)-(62).
    on the flatter block: at a tangential load of 0.4 m g it sticks (moves
    less than 1 % of what mu_d alone would allow in 0.3 s); at 0.6 m g it
    slides at (0.6 - 0.3) g within 2 %.
-4. 'Normal damping' with 'Algorithm = kinematic' is refused with one line.
+4. 'Normal damping' with 'Algorithm = kinematic' is refused with one line,
+   and so is 'Penalty scale factor' on a pair with a rigid body at the
+   default 'Algorithm = automatic' (kinematic there).
 5. An ABAQUS deck's *Contact Pair (tests/contact/kinematic_pair.inp: a block
    dropped at 1 m/s onto another) is kinematic, as ABAQUS/Explicit's
    default; with MECHANICAL CONSTRAINT=PENALTY it is a penalty pair. The
@@ -146,8 +148,16 @@ code, out, err = run_anvil(args.anvil, os.path.join(here, "kinematic_block.prm")
 lines = [l for l in err.splitlines() if l.strip()]
 c.check_true("'Normal damping' with kinematic contact: exit 2 and one error line",
              code == 2 and len(lines) == 1 and "Normal damping" in lines[0], err.strip())
+# A penalty entry on a pair with a rigid body at the default ('automatic'
+# makes it kinematic): refused, naming the entry and the way out.
+code, out, err = run_anvil(args.anvil, os.path.join(here, "kinematic_block.prm"), cwd=args.work_dir,
+                           extra_args=["--check", "--set", "Contact pair floor/Algorithm=automatic",
+                                       "--set", "Contact pair floor/Penalty scale factor=1"])
+lines = [l for l in err.splitlines() if l.strip()]
+c.check_true("'Penalty scale factor' on an automatic pair with a rigid body: exit 2, one line naming "
+             "'Algorithm = penalty'", code == 2 and len(lines) == 1 and "Penalty scale factor" in lines[0]
+             and "Algorithm = penalty" in lines[0], err.strip())
 
-# 5. An ABAQUS deck's *Contact Pair.
 # 5. An ABAQUS deck's *Contact Pair.
 shutil.copy(os.path.join(here, "kinematic_pair.inp"), os.path.join(args.work_dir, "pair.inp"))
 text = open(os.path.join(args.work_dir, "pair.inp")).read()
