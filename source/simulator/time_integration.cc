@@ -11,6 +11,7 @@
  */
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/step_section.h>
 
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/utilities.h>
@@ -53,7 +54,7 @@ namespace anvil
   // (the contact pairs).
   double Simulator::compute_internal_forces(const double dt_previous)
   {
-    TimerOutput::Scope t(*timer, "element forces");
+    StepSection t(*timer, print_wall_times, "element forces");
     // (The clock only where the balance is recorded.)
     const auto start =
       record_element_balance ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
@@ -69,13 +70,13 @@ namespace anvil
     for (auto &family : families)
       if (!family->empty() && family->has_forces())
         {
-          TimerOutput::Scope section(*timer, family->name());
+          StepSection section(*timer, print_wall_times, family->name());
           dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
         }
     // The step's first collective: a process that finished its elements
     // early waits here (or at the bars' exchange), not in 'element forces',
     // whose minimum and maximum over the processes show the imbalance.
-    TimerOutput::Scope r(*timer, "reductions");
+    StepSection r(*timer, print_wall_times, "reductions");
     const std::vector<unsigned long> eroded = solids->finish_forces();
     if (!eroded.empty())
       contact->deactivate_elements(eroded);
@@ -109,7 +110,7 @@ namespace anvil
   {
     if (contact->empty())
       return;
-    TimerOutput::Scope t(*timer, "contact");
+    StepSection t(*timer, print_wall_times, "contact");
     contact->add_forces(dt_previous);
   }
 
@@ -121,7 +122,7 @@ namespace anvil
   {
     if (contact->empty() || !contact->has_kinematic())
       return false;
-    TimerOutput::Scope t(*timer, "contact");
+    StepSection t(*timer, print_wall_times, "contact");
     contact->add_kinematic_forces(dt_previous, dt);
     return true;
   }
@@ -129,7 +130,7 @@ namespace anvil
 
   void Simulator::update_velocity(const double dt_previous, const double dt)
   {
-    TimerOutput::Scope t(*timer, "time integration");
+    StepSection t(*timer, print_wall_times, "time integration");
     const double       dt_avg = 0.5 * (dt_previous + dt);
     const unsigned int n      = position.locally_owned_size();
     double            *v      = velocity.begin();
@@ -235,7 +236,7 @@ namespace anvil
 
   void Simulator::update_position(const double dt)
   {
-    TimerOutput::Scope t(*timer, "time integration");
+    StepSection t(*timer, print_wall_times, "time integration");
     const unsigned int n = position.locally_owned_size();
     double            *x = position.begin();
     const double      *v = velocity.begin();

@@ -407,7 +407,7 @@ namespace anvil
     /** Gravitational acceleration of the scene (body force rho g). */
     dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
-    bool        print_wall_times;
+    bool        print_wall_times = false;
     /** Wall time between progress lines (0: every 10 % of the end time). */
     double      progress_interval = 5;
     /** Whether this run's output directory exists (a status file can go
