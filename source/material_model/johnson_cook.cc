@@ -3,7 +3,6 @@
  * Johnson-Cook plasticity, adiabatic heating and damage. See johnson_cook.h.
  */
 #include <anvil/material_model/johnson_cook.h>
-#include <anvil/utilities/bracketed_newton.h>
 #include <anvil/utilities/input_error.h>
 
 #include <xsimd/xsimd.hpp>
@@ -68,34 +67,80 @@ namespace anvil::MaterialModel
 
   double JohnsonCookLaw::plastic_increment(const double q_trial,
                                            const double eps_p,
-                                           const double T,
+                                           const double thermal,
                                            const double dt,
                                            const double three_G,
                                            const double guess) const
   {
-    // The temperature is that of the start of the step: its factor once.
-    const double thermal = thermal_factor(T);
-    if (!(q_trial > flow_stress_at(eps_p, 0., thermal)))
+    // The temperature is that of the start of the step: its factor given.
+    const double eps_n = eps_p > 0 ? std::pow(eps_p, n) : 0.;
+    if (!(q_trial > (A + B * eps_n) * thermal))
       return 0.;
-    // g(d) = q_trial - 3G d - sigma_y(eps_p + d, d / dt, T) falls
-    // monotonically in d: g(0) > 0, g(q_trial / 3G) <= 0.
-    const double scale = q_trial / three_G;
-    auto         g     = [&](const double d, double &slope) {
-      double       se, sr;
-      const double s = flow_stress_at(eps_p + d, dt > 0 ? d / dt : 0., thermal, &se, &sr);
-      slope          = -three_G - se - (dt > 0 ? sr / dt : 0.);
-      return q_trial - three_G * d - s;
-    };
-    // The first guess: the rate-free return with the current slope.
-    double       se, sr;
-    const double s0 = flow_stress_at(eps_p, 0., thermal, &se, &sr);
+    // g(d) = q_trial - 3G d - (A + B x^n) R(d / dt) theta, x = eps_p + d,
+    // falls monotonically in d: g(0) > 0, g(q_trial / 3G) <= 0.
+    const double scale     = q_trial / three_G;
+    const double tolerance = return_tolerance * scale;
+    const double inv_dt    = dt > 0 ? 1. / dt : 0.;
+    const double slope_at_zero = n < 1. ? 1e30 : (n == 1. ? B : 0.);
     // The first guess: the increment of the step before at its plastic
     // rate where there is one (steady flow changes it little from step to
-    // step), else the linearised return at the step's start.
-    const double d0 = guess > 0 && guess < scale ?
-                        guess :
-                        std::min((q_trial - s0) / (three_G + std::min(se, 1e3 * three_G)), scale);
-    return bracketed_newton(g, 0., scale, d0, 1e-14 * scale);
+    // step); else the root of the hardening alone, (A + B x^n) theta =
+    // q_trial, which lies at or beyond the root (the rate term and the
+    // elastic unloading only lower it) and is the root itself where the
+    // point first yields at a small increment; else the linearised return.
+    const double se = (eps_p > 0 ? n * B * eps_n / eps_p : slope_at_zero) * thermal;
+    double       d  = std::min((q_trial - (A + B * eps_n) * thermal) / (three_G + std::min(se, 1e3 * three_G)), scale);
+    if (guess > 0 && guess < scale)
+      d = guess;
+    else if (B > 0 && thermal > 0 && q_trial / thermal > A)
+      {
+        const double d_h = std::pow((q_trial / thermal - A) / B, 1. / n) - eps_p;
+        if (d_h > 0)
+          d = std::min(d_h, scale);
+      }
+    // Newton's method inside the bracket [0, q_trial / 3G], bisection where
+    // a step leaves it. A Newton step from d leaves an error of about
+    // |g'' / 2 g'| step^2: the iteration stops when that is below the
+    // tolerance (and the step does not cross the rate term's kink), so
+    // that the last evaluation is not spent confirming a converged step.
+    double lo = 0., hi = scale;
+    for (unsigned int it = 0; it < 100; ++it)
+      {
+        const double x     = eps_p + d;
+        const double xn    = x > 0 ? std::pow(x, n) : 0.;
+        const double H     = A + B * xn;
+        const double H1    = x > 0 ? n * B * xn / x : slope_at_zero;
+        const double H2    = x > 0 ? (n - 1.) * H1 / x : 0.;
+        const double ratio = d * inv_dt / reference_rate;
+        const bool   fast  = ratio > 1.;
+        const double R     = fast ? 1. + C * std::log(ratio) : 1.;
+        const double R1    = fast ? C / d : 0.;
+        const double R2    = fast ? -C / (d * d) : 0.;
+        const double g     = q_trial - three_G * d - thermal * H * R;
+        if (g == 0.)
+          break;
+        const double g1    = -three_G - thermal * (H1 * R + H * R1);
+        const double g2    = -thermal * (H2 * R + 2. * H1 * R1 + H * R2);
+        (g > 0 ? lo : hi)  = d;
+        const double step   = -g / g1;
+        const bool   inside = d + step > lo && d + step < hi;
+        // A step within the tolerance ends the iteration even where
+        // round-off puts it on the bracket's end.
+        const bool newton_done = std::abs(step) <= tolerance ||
+                                 (inside && std::abs(g2) * step * step <= 2. * tolerance * std::abs(g1) &&
+                                  ((d + step) * inv_dt / reference_rate > 1.) == fast);
+        if (newton_done)
+          return d + step;
+        if (inside)
+          d += step;
+        else
+          {
+            d = 0.5 * (lo + hi);
+            if (hi - lo <= tolerance)
+              break;
+          }
+      }
+    return d;
   }
 
 
@@ -216,7 +261,8 @@ namespace anvil::MaterialModel
   void JohnsonCook::initialize_history(double *history, const PointData &) const
   {
     history[2] = initial_temperature;
-    history[5] = law.flow_stress(0., 0., initial_temperature);
+    history[6] = law.thermal_factor(initial_temperature);
+    history[5] = law.flow_stress_at(0., 0., history[6]);
   }
 
 
@@ -235,7 +281,7 @@ namespace anvil::MaterialModel
       xi[k] = s[k] - (k < 3 ? p : 0.);
     const double q   = std::sqrt(1.5 * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
                                       2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5])));
-    const double dep = law.plastic_increment(q, h[0], h[2], dt, 3. * mu, previous_rate * dt);
+    const double dep = law.plastic_increment(q, h[0], h[6], dt, 3. * mu, previous_rate * dt);
     if (dep == 0.)
       return;
     const double q_new  = q - 3. * mu * dep;
@@ -252,8 +298,11 @@ namespace anvil::MaterialModel
         h[3] += eps_f > 0 ? dep / eps_f : 1.;
       }
     if (law.heating())
-      h[2] += law.heat_fraction * q_new * dep / (law.density * law.specific_heat);
-    h[5] = law.flow_stress(h[0], 0., h[2]);
+      {
+        h[2] += law.heat_fraction * q_new * dep / (law.density * law.specific_heat);
+        h[6] = law.thermal_factor(h[2]);
+      }
+    h[5] = law.flow_stress_at(h[0], 0., h[6]);
   }
 
 
@@ -313,12 +362,15 @@ namespace anvil::MaterialModel
   // @sect4{The return across the lanes}
   //
   // The same return as plastic_update(), lane by lane in vector registers
-  // (xsimd: 8 lanes a register with AVX-512, 4 with AVX2): Newton's method
-  // in the bracket [0, q / 3G] for every lane at once, each lane stopping
-  // where the scalar iteration stops; the powers and logarithms are
-  // xsimd's, which agree with the C library's to an ulp or two, so the
-  // batched and the point-by-point update agree to round-off
-  // (tests/unit/fast_path.cc).
+  // (xsimd: 8 lanes a register with AVX-512, 4 with AVX2): the same first
+  // guesses and Newton's method in the bracket [0, q / 3G] for every lane
+  // at once, each lane stopping where the scalar iteration stops; the
+  // powers and logarithms are xsimd's, which agree with the C library's to
+  // an ulp or two, so the batched and the point-by-point update agree to
+  // round-off (tests/unit/fast_path.cc). The state's hardening B eps_p^n
+  // comes from the stored flow stress and thermal factor, so that a
+  // yielding point evaluates the transcendental functions of its Newton
+  // steps and of its new state only.
   void JohnsonCook::plastic_update_batch(const double dt,
                                          const std::uint64_t (&flag)[batch_size],
                                          const double (&previous_rate)[batch_size],
@@ -330,28 +382,49 @@ namespace anvil::MaterialModel
     constexpr unsigned int n = V::size;
     static_assert(batch_size % n == 0, "a batch is a whole number of vector registers");
 
-    alignas(64) double h[6][batch_size];
-    for (unsigned int k = 0; k < 6; ++k)
+    constexpr unsigned int n_history = 7;
+    alignas(64) double     h[n_history][batch_size];
+    for (unsigned int k = 0; k < n_history; ++k)
       history.load(k, h[k]);
 
-    const V    three_G(3. * mu), A(law.A), B(law.B), n_exp(law.n), one(1.), zero(0.);
+    const V    three_G(3. * mu), A(law.A), B(law.B), n_exp(law.n), one(1.), zero(0.), tiny(1e-300);
     const bool thermal_on = law.thermal_softening();
     const V    T_t(law.transition_temperature),
       T_span(thermal_on ? law.melting_temperature - law.transition_temperature : 1.), m_exp(law.m);
     const double slope_at_zero =
       law.n < 1. ? 1e30 : (law.n == 1. ? law.B : 0.); // d(B eps^n)/d eps at eps = 0
-    const V inv_dt(dt > 0 ? 1. / dt : 0.), inv_ref(1. / law.reference_rate), C(law.C);
+    const V inv_dt(dt > 0 ? 1. / dt : 0.), inv_rate(dt > 0 ? 1. / (dt * law.reference_rate) : 0.),
+      C(law.C), inv_n(1. / law.n);
 
     // T* and the thermal factor 1 - T*^m.
     auto homologous = [&](const V &T) {
       return thermal_on ? xsimd::min(xsimd::max((T - T_t) / T_span, zero), one) : zero;
     };
     auto thermal_factor = [&](const V &Ts) {
-      return xsimd::select(Ts > zero, one - xsimd::exp(m_exp * xsimd::log(xsimd::max(Ts, V(1e-300)))), one);
+      return xsimd::select(Ts > zero, one - xsimd::exp(m_exp * xsimd::log(xsimd::max(Ts, tiny))), one);
     };
     // eps^n (0 at eps = 0).
-    auto power = [&](const V &eps) {
-      return xsimd::select(eps > zero, xsimd::exp(n_exp * xsimd::log(xsimd::max(eps, V(1e-300)))), zero);
+    auto power = [&](const V &eps, const V &exponent) {
+      return xsimd::select(eps > zero, xsimd::exp(exponent * xsimd::log(xsimd::max(eps, tiny))), zero);
+    };
+    // (1 + u)^n and ln(1 + u) for |u| <= series_reach: their series to
+    // u^11, the first term left off below 1e-18 of the value.
+    constexpr unsigned int series_terms = 11;
+    constexpr double       series_reach = 0.03;
+    V                      binomial[series_terms];
+    for (unsigned int k = 0; k < series_terms; ++k)
+      binomial[k] = V((law.n - k) / (k + 1.));
+    auto power_series = [&](const V &u) {
+      V r = one;
+      for (unsigned int k = series_terms; k-- > 0;)
+        r = one + binomial[k] * u * r;
+      return r;
+    };
+    auto log1p_series = [&](const V &u) {
+      V r(1. / series_terms);
+      for (unsigned int k = series_terms - 1; k > 0; --k)
+        r = V(1. / k) - u * r;
+      return u * r;
     };
 
     for (unsigned int c = 0; c < batch_size; c += n)
@@ -379,46 +452,101 @@ namespace anvil::MaterialModel
 
         const V eps0    = V::load_aligned(&h[0][c]);
         const V T0      = V::load_aligned(&h[2][c]);
-        const V Ts0     = homologous(T0);
-        const V thermal = thermal_factor(Ts0);
-        const V e0n     = power(eps0);
-        const V s0      = (A + B * e0n) * thermal;
+        const V s0      = V::load_aligned(&h[5][c]);
+        const V thermal = V::load_aligned(&h[6][c]);
         active          = active && (q > s0);
         if (!xsimd::any(active))
           continue;
+        // B eps_0^n from the stored flow stress (A + B eps_0^n) theta.
+        const V Be0n = xsimd::select(thermal > zero, xsimd::max(s0 / xsimd::max(thermal, tiny) - A, zero), zero);
 
-        // Newton's method in the bracket, as bracketed_newton() per lane.
+        // The first guesses of plastic_increment().
         const V scale = q / three_G;
-        const V tol   = V(1e-14) * scale;
-        const V se0 =
-          xsimd::select(eps0 > zero, n_exp * B * e0n / xsimd::max(eps0, V(1e-300)), V(slope_at_zero)) * thermal;
+        const V tol   = V(JohnsonCookLaw::return_tolerance) * scale;
         const V guess = V::load_unaligned(&previous_rate[c]) * V(dt);
-        V       d     = xsimd::select((guess > zero) && (guess < scale), guess,
-                                xsimd::min((q - s0) / (three_G + xsimd::min(se0, V(1e3) * three_G)), scale));
+        const M take_guess = (guess > zero) && (guess < scale);
+        const V se0 =
+          xsimd::select(eps0 > zero, n_exp * Be0n / xsimd::max(eps0, tiny), V(slope_at_zero)) * thermal;
+        V d = xsimd::min((q - s0) / (three_G + xsimd::min(se0, V(1e3) * three_G)), scale);
+        if (law.B > 0 && !xsimd::all(take_guess || !active))
+          {
+            const V over = q / xsimd::max(thermal, tiny) - A;
+            const V d_h  = power(over / B, inv_n) - eps0;
+            d = xsimd::select((thermal > zero) && (over > zero) && (d_h > zero), xsimd::min(d_h, scale), d);
+          }
+        d = xsimd::select(take_guess, guess, d);
+
+        // Newton's method in the bracket, as plastic_increment() per lane.
+        // x^n and ln(d / dt eps_0_dot) are evaluated at the first point
+        // and wherever a lane's step leaves the reach of the series about
+        // that point (|d - d_a| <= 0.03 of x_a and of d_a, on the same
+        // side of the rate term's kink in every running lane); between,
+        // their series: the steps that polish a root cost no
+        // transcendental function.
         V lo = zero, hi = scale;
         M running = active;
+        V x_a = zero, xn_a = zero, d_a = zero, log_a = zero, inv_x_a = zero, inv_d_a = zero;
+        M fast_a    = running && !running;
+        bool anchored = false;
         for (unsigned int it = 0; it < 100 && xsimd::any(running); ++it)
           {
-            const V x      = eps0 + d;
-            const V xn     = power(x);
-            const V harden = A + B * xn;
-            const V rate   = d * inv_dt;
-            const V ratio  = rate * inv_ref;
-            const M fast   = ratio > one;
-            const V rate_f = xsimd::select(fast, one + C * xsimd::log(xsimd::max(ratio, V(1e-300))), one);
-            const V se =
-              xsimd::select(x > zero, n_exp * B * xn / xsimd::max(x, V(1e-300)), V(slope_at_zero)) * rate_f * thermal;
-            const V sr    = xsimd::select(fast, harden * C / xsimd::max(rate, V(1e-300)) * thermal, zero);
-            const V g     = q - three_G * d - harden * rate_f * thermal;
-            const V slope = -three_G - se - sr * inv_dt;
-            const M above = g > zero;
-            lo            = xsimd::select(running && above, d, lo);
-            hi            = xsimd::select(running && !above, d, hi);
-            V next        = d - g / slope;
-            next          = xsimd::select((next > lo) && (next < hi), next, V(0.5) * (lo + hi));
-            const M done  = (xsimd::abs(next - d) <= tol) || (hi - lo <= tol);
-            d             = xsimd::select(running, next, d);
-            running       = running && !done;
+            const V x     = eps0 + d;
+            const V ratio = d * inv_rate;
+            const M fast  = ratio > one;
+            V       xn, log_ratio;
+            bool    series = false;
+            if (anchored)
+              {
+                const V u_x   = (d - d_a) * inv_x_a;
+                const V u_d   = (d - d_a) * inv_d_a;
+                const M small = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
+                                (!fast || ((d_a > zero) && (xsimd::abs(u_d) <= V(series_reach))));
+                if (xsimd::all(small || !running))
+                  {
+                    series    = true;
+                    xn        = xn_a * power_series(u_x);
+                    log_ratio = log_a + log1p_series(u_d);
+                  }
+              }
+            if (!series)
+              {
+                xn        = power(x, n_exp);
+                log_ratio = xsimd::any(fast && running) ? xsimd::log(xsimd::max(ratio, tiny)) : zero;
+                x_a       = x;
+                xn_a      = xn;
+                d_a       = d;
+                inv_x_a   = one / xsimd::max(x, tiny);
+                inv_d_a   = one / xsimd::max(d, tiny);
+                log_a     = log_ratio;
+                fast_a    = fast;
+                anchored  = true;
+              }
+            const M pos    = x > zero;
+            const V inv_x  = one / xsimd::max(x, tiny);
+            const V H      = A + B * xn;
+            const V H1     = xsimd::select(pos, n_exp * B * xn * inv_x, V(slope_at_zero));
+            const V H2     = xsimd::select(pos, (n_exp - one) * H1 * inv_x, zero);
+            const V inv_d  = one / xsimd::max(d, tiny);
+            const V R      = xsimd::select(fast, one + C * log_ratio, one);
+            const V R1     = xsimd::select(fast, C * inv_d, zero);
+            const V R2     = xsimd::select(fast, -C * inv_d * inv_d, zero);
+            const V g      = q - three_G * d - thermal * H * R;
+            const V g1     = -three_G - thermal * (H1 * R + H * R1);
+            const V g2     = -thermal * (H2 * R + V(2.) * H1 * R1 + H * R2);
+            const M root   = g == zero;
+            const M above  = g > zero;
+            lo             = xsimd::select(running && above, d, lo);
+            hi             = xsimd::select(running && !above, d, hi);
+            const V step   = -g / g1;
+            const M inside = (d + step > lo) && (d + step < hi);
+            const M newton_done =
+              (xsimd::abs(step) <= tol) ||
+              (inside && (xsimd::abs(g2) * step * step <= V(2.) * tol * xsimd::abs(g1)) &&
+               (((d + step) * inv_rate > one) == fast));
+            const V next = xsimd::select(inside || newton_done, d + step, V(0.5) * (lo + hi));
+            const M done = root || newton_done || (!inside && (hi - lo <= tol));
+            d            = xsimd::select(running && !root, next, d);
+            running = running && !done;
           }
         const V dep = xsimd::select(active, d, zero);
         active      = active && (dep != zero);
@@ -427,31 +555,43 @@ namespace anvil::MaterialModel
         const V factor = q_new / q;
         for (unsigned int k = 0; k < 6; ++k)
           xsimd::select(active, factor * xi[k] + (k < 3 ? p : zero), sv[k]).store_unaligned(&s[k][c]);
-        const V rate   = dep * inv_dt;
-        const V eps1   = eps0 + dep;
-        V       T1     = T0;
+        const V rate = dep * inv_dt;
+        const V eps1 = eps0 + dep;
         xsimd::select(active, eps1, eps0).store_aligned(&h[0][c]);
         xsimd::select(active, V::load_aligned(&h[1][c]) + q_new * dep, V::load_aligned(&h[1][c]))
           .store_aligned(&h[1][c]);
         xsimd::select(active, rate, V::load_aligned(&h[4][c])).store_aligned(&h[4][c]);
         if (law.damage())
           {
-            const V triax = xsimd::select(q_new > zero, p / xsimd::max(q_new, V(1e-300)), zero);
-            const V ratio = xsimd::max(rate * inv_ref, one);
+            const V triax = xsimd::select(q_new > zero, p / xsimd::max(q_new, tiny), zero);
+            const V ratio = xsimd::max(rate / V(law.reference_rate), one);
             const V eps_f = (V(law.D[0]) + V(law.D[1]) * xsimd::exp(V(law.D[2]) * triax)) *
-                            (one + V(law.D[3]) * xsimd::log(ratio)) * (one + V(law.D[4]) * Ts0);
+                            (one + V(law.D[3]) * xsimd::log(ratio)) * (one + V(law.D[4]) * homologous(T0));
             const V d_old = V::load_aligned(&h[3][c]);
             xsimd::select(active, d_old + xsimd::select(eps_f > zero, dep / eps_f, one), d_old)
               .store_aligned(&h[3][c]);
           }
+        V thermal1 = thermal;
         if (law.heating())
-          T1 = xsimd::select(active,
-                             T0 + V(law.heat_fraction) * q_new * dep / V(law.density * law.specific_heat), T0);
-        T1.store_aligned(&h[2][c]);
-        const V flow = (A + B * power(eps1)) * thermal_factor(homologous(T1));
-        xsimd::select(active, flow, V::load_aligned(&h[5][c])).store_aligned(&h[5][c]);
+          {
+            const V T1 =
+              xsimd::select(active, T0 + V(law.heat_fraction) * q_new * dep / V(law.density * law.specific_heat), T0);
+            T1.store_aligned(&h[2][c]);
+            if (thermal_on)
+              {
+                thermal1 = xsimd::select(active, thermal_factor(homologous(T1)), thermal);
+                thermal1.store_aligned(&h[6][c]);
+              }
+          }
+        // eps_1^n by the series about the last point of evaluation where
+        // every lane is within its reach, as in the iteration.
+        const V u_x    = (eps1 - x_a) * inv_x_a;
+        const M small  = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach));
+        const V eps1_n = xsimd::all(small || !active) ? xn_a * power_series(u_x) : power(eps1, n_exp);
+        const V flow    = (A + B * eps1_n) * thermal1;
+        xsimd::select(active, flow, s0).store_aligned(&h[5][c]);
       }
-    for (unsigned int k = 0; k < 6; ++k)
+    for (unsigned int k = 0; k < n_history; ++k)
       history.store(k, h[k]);
   }
 

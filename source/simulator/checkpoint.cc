@@ -211,7 +211,7 @@ namespace anvil
   // nodes: 'layout' names that order and what the state holds (1, unstated:
   // element ids in p4est's tree order; 2: the scene's cell order, the fully
   // distributed mesh; 3: the run summary with every probe's figures; 6:
-  // the penalty pairs' approach). A checkpoint of another layout would load
+  // the penalty pairs' approach; 7: Johnson-Cook's thermal factor). A checkpoint of another layout would load
   // its state wrongly.
   void Simulator::check_checkpoint(const std::string &dir) const
   {

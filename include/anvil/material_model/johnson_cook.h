@@ -75,15 +75,22 @@ namespace anvil::MaterialModel
     double flow_stress_at(double eps_p, double rate, double thermal, double *slope_eps = nullptr,
                           double *slope_rate = nullptr) const;
 
+    /** Accuracy of the return's plastic increment, as a share of its
+        bound q_trial / 3G (the stress it leaves is that share of q_trial
+        off the yield surface). */
+    static constexpr double return_tolerance = 1e-12;
+
     /**
      * Effective plastic strain increment of the radial return from the
-     * trial effective stress @p q_trial over @p dt at temperature @p T:
-     * the root of q_trial - 3G dep = flow_stress(eps_p + dep, dep / dt, T),
+     * trial effective stress @p q_trial over @p dt at the thermal factor
+     * @p thermal (1 - T*^m of the step's start): the root of
+     * q_trial - 3G dep = flow_stress_at(eps_p + dep, dep / dt, thermal),
      * by Newton's method inside the bracket [0, q_trial / 3G] (bisection
-     * where a step leaves it). 0 when the point is within the yield
-     * stress at the reference rate (elastic).
+     * where a step leaves it), from @p guess where it lies in the bracket.
+     * 0 when the point is within the yield stress at the reference rate
+     * (elastic).
      */
-    double plastic_increment(double q_trial, double eps_p, double T, double dt, double three_G,
+    double plastic_increment(double q_trial, double eps_p, double thermal, double dt, double three_G,
                              double guess = 0) const;
 
     /** Strain to failure at triaxiality @p triaxiality, plastic strain rate
@@ -120,12 +127,12 @@ namespace anvil::MaterialModel
 
     unsigned int n_updated_lagrangian_history() const override
     {
-      return 6;
+      return 7;
     }
     std::vector<std::string> history_names() const override
     {
       return {"effective_plastic_strain", "plastic_work_density", "temperature", "damage",
-              "effective_plastic_strain_rate", ""};
+              "effective_plastic_strain_rate", "", ""};
     }
     void initialize_history(double *history, const PointData &data) const override;
     int  dissipation_index() const override

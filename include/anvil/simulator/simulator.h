@@ -234,7 +234,7 @@ namespace anvil
         cells' cost per step (setup.cc). */
     void partition_by_cost(dealii::Triangulation<3> &serial) const;
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 6;
+    static constexpr int checkpoint_layout = 7;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
