@@ -319,7 +319,11 @@ namespace anvil::Contact
                       Patterns::Bool(),
                       "Apply the node-to-segment pass in both directions "
                       "(the symmetric penalty method). If false, the second "
-                      "body's nodes are the only slaves.");
+                      "body's nodes are the only slaves. Kinematic contact "
+                      "between two deformable bodies balances the two passes "
+                      "(the mean of their corrections, as ABAQUS/Explicit's "
+                      "balanced master-slave); with a rigid body it solves "
+                      "them together.");
   }
 
 

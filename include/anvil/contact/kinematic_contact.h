@@ -15,6 +15,10 @@
  * inverse masses, P >= 0 an impulse times the step, kg m): one equation in
  * P per constraint, solved for all of them together by projected
  * Gauss-Seidel sweeps in an order fixed by the reference coordinates.
+ * Between two deformable surfaces the two passes (slaves of either body)
+ * are balanced: each corrects the prediction alone and the step takes the
+ * mean, which does not over-constrain meshes that do not match; with a
+ * rigid surface both passes are solved together.
  * Friction (seed Eqs. (61)-(62)) then takes out the tangential slip of each
  * constraint up to mu P. The contact force on a node is its correction
  * impulse over dt_avg dt, so that x^{n+1} = x* + Dx: no penetration at the
