@@ -480,9 +480,9 @@ namespace anvil::MaterialModel
         // x^n and ln(d / dt eps_0_dot) are evaluated at the first point
         // and wherever a lane's step leaves the reach of the series about
         // that point (|d - d_a| <= 0.03 of x_a and of d_a, on the same
-        // side of the rate term's kink in every running lane); between,
-        // their series: the steps that polish a root cost no
-        // transcendental function.
+        // side of the rate term's kink); between, their series. Once every
+        // running lane is within reach, the steps that polish the roots
+        // cost no transcendental function.
         V lo = zero, hi = scale;
         M running = active;
         V x_a = zero, xn_a = zero, d_a = zero, log_a = zero, inv_x_a = zero, inv_d_a = zero;
@@ -493,33 +493,34 @@ namespace anvil::MaterialModel
             const V x     = eps0 + d;
             const V ratio = d * inv_rate;
             const M fast  = ratio > one;
-            V       xn, log_ratio;
-            bool    series = false;
+            // Each lane takes the series or the functions by its own
+            // step alone, so that its result does not depend on the other
+            // points of its batch (np = 2 gives np = 1's bits).
+            V xn, log_ratio;
+            M small = running && !running;
             if (anchored)
               {
-                const V u_x   = (d - d_a) * inv_x_a;
-                const V u_d   = (d - d_a) * inv_d_a;
-                const M small = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
-                                (!fast || ((d_a > zero) && (xsimd::abs(u_d) <= V(series_reach))));
-                if (xsimd::all(small || !running))
-                  {
-                    series    = true;
-                    xn        = xn_a * power_series(u_x);
-                    log_ratio = log_a + log1p_series(u_d);
-                  }
+                const V u_x = (d - d_a) * inv_x_a;
+                const V u_d = (d - d_a) * inv_d_a;
+                small       = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
+                        (!fast || ((d_a > zero) && (xsimd::abs(u_d) <= V(series_reach))));
+                xn          = xn_a * power_series(u_x);
+                log_ratio   = log_a + log1p_series(u_d);
               }
-            if (!series)
+            if (!xsimd::all(small || !running))
               {
-                xn        = power(x, n_exp);
-                log_ratio = xsimd::any(fast && running) ? xsimd::log(xsimd::max(ratio, tiny)) : zero;
-                x_a       = x;
-                xn_a      = xn;
-                d_a       = d;
-                inv_x_a   = one / xsimd::max(x, tiny);
-                inv_d_a   = one / xsimd::max(d, tiny);
-                log_a     = log_ratio;
-                fast_a    = fast;
-                anchored  = true;
+                const V xn_f  = power(x, n_exp);
+                const V log_f = xsimd::any(fast && running) ? xsimd::log(xsimd::max(ratio, tiny)) : zero;
+                xn            = xsimd::select(small, xn, xn_f);
+                log_ratio     = xsimd::select(small, log_ratio, log_f);
+                x_a           = xsimd::select(small, x_a, x);
+                xn_a          = xsimd::select(small, xn_a, xn_f);
+                d_a           = xsimd::select(small, d_a, d);
+                inv_x_a       = xsimd::select(small, inv_x_a, one / xsimd::max(x, tiny));
+                inv_d_a       = xsimd::select(small, inv_d_a, one / xsimd::max(d, tiny));
+                log_a         = xsimd::select(small, log_a, log_f);
+                fast_a        = (small && fast_a) || (!small && fast);
+                anchored      = true;
               }
             const M pos    = x > zero;
             const V inv_x  = one / xsimd::max(x, tiny);
@@ -583,11 +584,13 @@ namespace anvil::MaterialModel
                 thermal1.store_aligned(&h[6][c]);
               }
           }
-        // eps_1^n by the series about the last point of evaluation where
-        // every lane is within its reach, as in the iteration.
+        // eps_1^n by the series about the lane's last point of evaluation
+        // where it is within its reach, as in the iteration.
         const V u_x    = (eps1 - x_a) * inv_x_a;
         const M small  = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach));
-        const V eps1_n = xsimd::all(small || !active) ? xn_a * power_series(u_x) : power(eps1, n_exp);
+        V       eps1_n = xn_a * power_series(u_x);
+        if (!xsimd::all(small || !active))
+          eps1_n = xsimd::select(small, eps1_n, power(eps1, n_exp));
         const V flow    = (A + B * eps1_n) * thermal1;
         xsimd::select(active, flow, s0).store_aligned(&h[5][c]);
       }
