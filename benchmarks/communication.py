@@ -53,7 +53,8 @@ def blocks_scene(path):
                  + elastic_box_body("lower", (0, 0, 0), (1, 1, 0.8), (40, 40, 32), 7850, 2.06e11, 0.3)
                  + elastic_box_body("upper", (0, 0, 0.8), (1, 1, 1.6), (40, 40, 32), 7850, 2.06e11, 0.3)
                  + "subsection Body upper\n  set Initial velocity = 0, 0, -1\nend\n"
-                 + "subsection Contact pair press\n  set First body = lower\n  set Second body = upper\nend\n")
+                 + "subsection Contact pair press\n  set Algorithm = penalty\n  set First body = lower\n"
+                 "  set Second body = upper\nend\n")
     return path
 
 

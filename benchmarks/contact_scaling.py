@@ -57,6 +57,7 @@ end
 {body("upper", 0, h, -1.0)}
 {body("lower", -h, 0, 0.0)}
 subsection Contact pair stack
+  set Algorithm = penalty
   set First body = upper
   set Second body = lower
 end

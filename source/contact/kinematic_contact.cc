@@ -149,8 +149,8 @@ namespace anvil::Contact
                         stiffness ? "Penalty stiffness" :
                                     "Mass penalty scale factor") +
                        "' is for 'Algorithm = penalty'; this pair's contact is kinematic (no "
-                       "springs; 'automatic' chooses it for a pair with a rigid body): set "
-                       "'Algorithm = penalty' to use the entry, or remove it");
+                       "springs; 'automatic' chooses it): set 'Algorithm = penalty' to use the "
+                       "entry, or remove it");
   }
 
 

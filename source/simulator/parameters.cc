@@ -833,12 +833,7 @@ namespace anvil
         for (unsigned int i = 0; i < pair_names.size(); ++i)
           {
             prm.enter_subsection("Contact pair " + pair_names[i]);
-            pairs.push_back(Contact::create(prm, pair_names[i], [&](const std::string &name) {
-              for (const auto &b : bodies)
-                if (b.name == name)
-                  return b.is_rigid();
-              return false;
-            }));
+            pairs.push_back(Contact::create(prm, pair_names[i]));
             prm.leave_subsection();
             check_body(pairs.back()->first_body, "Contact pair " + pair_names[i]);
             check_body(pairs.back()->second_body, "Contact pair " + pair_names[i]);

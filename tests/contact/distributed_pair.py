@@ -49,6 +49,7 @@ scene = write_scene(os.path.join(args.work_dir, "blocks.prm"), text=(
   set Initial velocity = 3, 1, -20
 end
 subsection Contact pair press
+  set Algorithm   = penalty
   set First body  = lower
   set Second body = upper
   set Static friction coefficient  = 0.3
@@ -149,6 +150,7 @@ subsection Boundary condition rim
   set Boundary ids = 0, 1, 2, 3
 end
 subsection Contact pair hit
+  set Algorithm   = penalty
   set First body  = plate
   set Second body = bar
   set Static friction coefficient  = 0.2

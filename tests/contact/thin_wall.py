@@ -78,6 +78,7 @@ subsection Body wall
   set Formulation = updated Lagrangian
 end
 {plane_condition("fixed_back", "wall", "x", at=back, components="x, y, z")}subsection Contact pair strike
+  set Algorithm   = penalty
   set First body  = wall
   set Second body = block
 end

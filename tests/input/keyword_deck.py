@@ -160,6 +160,7 @@ lsdyna_scene = ("set Bodies = striker, block\n"
                 condition("b3", "block", "XZERO", "x") + condition("b4", "striker", "YZERO", "y") +
                 condition("b5", "block", "YZERO", "y") + """
 subsection Contact pair pair
+  set Algorithm = penalty
   set First body = block
   set Second body = striker
   set Penalty scale factor = 0.1
@@ -311,6 +312,7 @@ abaqus_scene = ("set Bodies = striker, block\n"
                 condition("bc2_xzero", "striker", "XZERO", "x") + condition("bc3_xzero", "block", "XZERO", "x") +
                 condition("bc4_yzero", "striker", "YZERO", "y") + condition("bc5_yzero", "block", "YZERO", "y") + """
 subsection Contact pair pair
+  set Algorithm = penalty
   set First body = striker
   set Second body = block
   set Static friction coefficient = 0.2

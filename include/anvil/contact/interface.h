@@ -297,11 +297,9 @@ namespace anvil::Contact
 
   /** The algorithm the pair @p pair_name selects, its names set and its
       entries read (the pair's subsection is the current one). 'automatic'
-      (the default) is 'kinematic' when @p is_rigid says one of the two
-      bodies is rigid, 'penalty' between two deformable bodies. */
-  std::unique_ptr<Algorithm> create(dealii::ParameterHandler                      &prm,
-                                    const std::string                             &pair_name,
-                                    const std::function<bool(const std::string &)> &is_rigid);
+      (the default) is 'kinematic', whose passes balance themselves between
+      two deformable bodies. */
+  std::unique_ptr<Algorithm> create(dealii::ParameterHandler &prm, const std::string &pair_name);
 } // namespace anvil::Contact
 
 /**
