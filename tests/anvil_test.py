@@ -73,9 +73,19 @@ def arguments():
     return a
 
 
-def run_anvil(anvil, prm, np=1, cwd=None, extra_args=()):
+# Command-line modes that run no simulation (and read no 'Simulation'
+# entries).
+NO_RUN_FLAGS = ("--check", "--translate", "--study", "--print-parameters", "--print-cost",
+                "--material-point", "--help", "--version")
+
+
+def run_anvil(anvil, prm, np=1, cwd=None, extra_args=(), plots=False):
     """Run anvil on prm with np MPI processes; return (exit code, stdout,
-    stderr)."""
+    stderr). The run makes its PNG plots only with 'plots' (each costs a
+    Python start, about 1.4 s; the tests that check plots ask for them)."""
+    extra_args = list(extra_args)
+    if not plots and not any(a in NO_RUN_FLAGS for a in extra_args):
+        extra_args = ["--set", "Simulation/Plots=false"] + extra_args
     cmd = [anvil, *extra_args, prm]
     if np > 1:
         cmd = ["mpirun", "-np", str(np), "--oversubscribe"] + cmd

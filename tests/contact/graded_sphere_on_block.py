@@ -26,7 +26,7 @@ of about 1.5 % of delta (F (1 - nu^2) / (pi E D) over delta).
 Checks: peak force and contact duration within 5 % of Hertz; energy
 balance below 1 %; the run takes at most half the steps of the worst
 pairing (printed: steps taken, steps the elements alone need, steps of the
-worst pairing); np = 2 equals np = 1 (contact history, 1e-8). Kinematic:
+worst pairing). Kinematic:
 peak force and duration within 4 % of Hertz (the ball's own waves stiffen
 the impact by about 3 % at this speed: hertz_elastic_sphere), the force
 smooth (no row-to-row change above 5 % of the peak), energy balance 1 %.
@@ -34,7 +34,7 @@ smooth (no row-to-row change above 5 % of the peak), energy balance 1 %.
 import math
 import os
 from anvil_test import (Checker, arguments, elastic_material, graded, lumped_masses,
-                        max_relative_difference, plane_condition, read_csv, run_anvil, write_ball,
+                        plane_condition, read_csv, run_anvil, write_ball,
                         write_hexahedra, write_scene)
 
 args = arguments()
@@ -179,9 +179,9 @@ c.check_below("steps taken / steps of the worst pairing", steps / worst, 0.5)
 c.check_true("the springs in contact set some steps (the bound is live)",
              summary["contact_limited_steps"] > 0)
 
-contact2, _, _ = run(2)
-c.check_below("np = 2 against np = 1: largest relative difference of the contact history",
-              max_relative_difference(contact, contact2), 1e-8)
+# (np = 2 against np = 1 for a penalty pair between two meshes:
+# distributed_pair, at 2, 3 and 4 processes; for a kinematic pair:
+# kinematic_contact.)
 
 # Kinematic contact between the two deformable bodies, whose meshes do not
 # match: the two passes balanced (each corrects the predicted motion alone,

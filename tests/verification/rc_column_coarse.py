@@ -41,7 +41,7 @@ prm_dir = os.path.join(args.source_dir, "prm", "rc_column_impact")
 def run(name, base, np=1, text=""):
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
                       include=os.path.join(prm_dir, base), text=text)
-    code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
+    code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir, plots=True)
     if not c.check_true(f"{name} (np = {np}) runs to its end", code == 0, err.strip()[-400:]):
         c.finish()
     return os.path.join(args.work_dir, "output", name)
