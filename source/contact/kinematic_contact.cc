@@ -459,7 +459,8 @@ namespace anvil::Contact
     // block: force spikes of 45 % of the peak at 0.2 m/s, a stop at 0.4).
     // Where the meshes match, the two corrections are the same; where they
     // do not, half of their difference is left as penetration (reported)
-    // and taken out at the next steps.
+    // and taken out at the next steps. A step in which only one pass
+    // finds constraints applies that pass whole.
     const unsigned int n_first_pass =
       std::find_if(constraints.begin(), constraints.end(), [](const Constraint &c) { return c.on_first; }) -
       constraints.begin();
