@@ -464,7 +464,8 @@ namespace anvil::Contact
     const unsigned int n_first_pass =
       std::find_if(constraints.begin(), constraints.end(), [](const Constraint &c) { return c.on_first; }) -
       constraints.begin();
-    if (balanced && n_first_pass > 0 && n_first_pass < constraints.size())
+    const bool averaged = balanced && n_first_pass > 0 && n_first_pass < constraints.size();
+    if (averaged)
       {
         const std::vector<double> xp0 = xp;
         solve(0, n_first_pass);
@@ -485,7 +486,7 @@ namespace anvil::Contact
 
     // Friction (seed Eqs. (61)-(62)): each constraint's tangential slip
     // over the step taken out, up to mu times its normal impulse.
-    const double friction_share = balanced && n_first_pass > 0 && n_first_pass < constraints.size() ? 0.5 : 1.;
+    const double friction_share = averaged ? 0.5 : 1.;
     if (static_friction > 0 || dynamic_friction > 0)
       for (auto &c : constraints)
         if (c.impulse > 0)

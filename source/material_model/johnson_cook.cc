@@ -35,33 +35,16 @@ namespace anvil::MaterialModel
   }
 
 
-  double JohnsonCookLaw::flow_stress(const double eps_p,
-                                     const double rate,
-                                     const double T,
-                                     double      *slope_eps,
-                                     double      *slope_rate) const
+  double JohnsonCookLaw::flow_stress(const double eps_p, const double rate, const double T) const
   {
-    return flow_stress_at(eps_p, rate, thermal_factor(T), slope_eps, slope_rate);
+    return flow_stress_at(eps_p, rate, thermal_factor(T));
   }
 
 
-  double JohnsonCookLaw::flow_stress_at(const double eps_p,
-                                        const double rate,
-                                        const double thermal,
-                                        double      *slope_eps,
-                                        double      *slope_rate) const
+  double JohnsonCookLaw::flow_stress_at(const double eps_p, const double rate, const double thermal) const
   {
-    const double eps_n   = eps_p > 0 ? std::pow(eps_p, n) : 0.;
-    const double harden  = A + B * eps_n;
-    const double ratio   = rate / reference_rate;
-    const double rate_f  = ratio > 1. ? 1. + C * std::log(ratio) : 1.;
-    if (slope_eps != nullptr)
-      // d(B eps^n)/d eps = n B eps^n / eps; at eps = 0 (n < 1) infinite: a
-      // large finite slope keeps Newton's step inside the bracket.
-      *slope_eps = (eps_p > 0 ? n * B * eps_n / eps_p : (n < 1. ? 1e30 : n == 1. ? B : 0.)) * rate_f * thermal;
-    if (slope_rate != nullptr)
-      *slope_rate = ratio > 1. ? harden * C / rate * thermal : 0.;
-    return harden * rate_f * thermal;
+    const double ratio = rate / reference_rate;
+    return (A + B * (eps_p > 0 ? std::pow(eps_p, n) : 0.)) * (ratio > 1. ? 1. + C * std::log(ratio) : 1.) * thermal;
   }
 
 

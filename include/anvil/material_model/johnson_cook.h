@@ -66,14 +66,11 @@ namespace anvil::MaterialModel
     double thermal_factor(double T) const;
 
     /** Flow stress at plastic strain @p eps_p, plastic strain rate @p rate
-        and temperature @p T; with @p slope_eps and @p slope_rate its
-        derivatives. Units: Pa. */
-    double flow_stress(double eps_p, double rate, double T, double *slope_eps = nullptr,
-                       double *slope_rate = nullptr) const;
+        and temperature @p T. Units: Pa. */
+    double flow_stress(double eps_p, double rate, double T) const;
 
     /** The same with the thermal factor 1 - T*^m given. */
-    double flow_stress_at(double eps_p, double rate, double thermal, double *slope_eps = nullptr,
-                          double *slope_rate = nullptr) const;
+    double flow_stress_at(double eps_p, double rate, double thermal) const;
 
     /** Accuracy of the return's plastic increment, as a share of its
         bound q_trial / 3G (the stress it leaves is that share of q_trial
