@@ -11,9 +11,7 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-#  include <immintrin.h>
-#endif
+#include <xsimd/xsimd.hpp>
 
 namespace anvil::Element
 {
@@ -310,48 +308,79 @@ namespace anvil::Element
           }
     }
 
+    // Vectors of the compiler's generic vector extension (GCC, Clang): their
+    // shuffles (__builtin_shufflevector) are lowered to the target's own
+    // instructions (AVX-512's two-register permutes, AVX2's unpacks and lane
+    // permutes, NEON's zips), so that the gather below is written once for
+    // every instruction set. (Debian's xsimd 8 has no shuffle of two
+    // registers that means the same on every instruction set.) A Vec4 is
+    // loaded from any double; the others are stored aligned.
+    typedef double        Vec4 __attribute__((vector_size(32), aligned(8)));
+    typedef double        Vec8 __attribute__((vector_size(64)));
+    typedef double        AlignedVec4 __attribute__((vector_size(32)));
+
+    /** The doubles a vector register holds on this machine (8 with
+        AVX-512, 4 with AVX2, 2 with SSE and NEON). */
+    constexpr unsigned int register_doubles = xsimd::batch<double>::size;
+
     /** xe[n][a][l] = x[idx[n][l] + a]: the batch's nodal values, lanes
-        innermost. A node's three components are consecutive, so with
-        AVX-512 each (node, lane) is one masked load of three doubles, and
-        eight of them are transposed into the three components' lane
-        vectors (24 scalar loads and their inserts before). */
+        innermost. A node's three components are consecutive: each
+        (node, lane) is one load of four doubles (the node's and the next
+        value, unused), and the loads of four or eight lanes are transposed
+        into the three components' lane vectors in registers (24 scalar
+        loads and their inserts per node otherwise). The fourth value read
+        must exist: @p wide is false where the batch holds its group's
+        last node (whose offset + 3 may be past the vector's end), and the
+        batch is then gathered value by value. */
     template <unsigned int W>
-    inline void gather_nodes(const double *x, const unsigned int (&idx)[8][W], double (&xe)[8][3][W])
+    inline void gather_nodes(const double *x, const unsigned int (&idx)[8][W], double (&xe)[8][3][W],
+                             const bool wide)
     {
-#if defined(__AVX512F__) && defined(__AVX512VL__)
-      if constexpr (W == 8)
-        {
-          // From two registers of lanes (2k, 2k+1) and (2k+2, 2k+3), each
-          // [x y z 0 | x y z 0]: the four lanes' x and y, and their z.
-          const __m512i xy = _mm512_setr_epi64(0, 4, 8, 12, 1, 5, 9, 13);
-          const __m512i z  = _mm512_setr_epi64(2, 6, 10, 14, 2, 6, 10, 14);
-          // The low and the high halves of two such results, joined.
-          const __m512i low  = _mm512_setr_epi64(0, 1, 2, 3, 8, 9, 10, 11);
-          const __m512i high = _mm512_setr_epi64(4, 5, 6, 7, 12, 13, 14, 15);
-          const __m512d zero = _mm512_setzero_pd();
-          for (unsigned int n = 0; n < 8; ++n)
-            {
-              __m512d t[4];
-              for (unsigned int k = 0; k < 4; ++k)
+      const auto load = [x](const unsigned int i) { return *reinterpret_cast<const Vec4 *>(x + i); };
+      if constexpr (register_doubles >= 8 && W % 8 == 0)
+        if (wide)
+          {
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int l0 = 0; l0 < W; l0 += 8)
                 {
-                  // (The masked forms of the inserts: GCC 12 warns of the
-                  // plain ones' undefined source.)
-                  const __m512d lo = _mm512_mask_insertf64x4(
-                    zero, 0xff, zero, _mm256_maskz_loadu_pd(0x7, x + idx[n][2 * k]), 0);
-                  t[k] = _mm512_mask_insertf64x4(lo, 0xff, lo,
-                                                 _mm256_maskz_loadu_pd(0x7, x + idx[n][2 * k + 1]), 1);
+                  // Lanes (2k, 2k + 1) side by side, [x y z . | x y z .];
+                  // then the eight lanes' x and y, and their z.
+                  Vec8 t[4];
+                  for (unsigned int k = 0; k < 4; ++k)
+                    t[k] = __builtin_shufflevector(load(idx[n][l0 + 2 * k]), load(idx[n][l0 + 2 * k + 1]),
+                                                   0, 1, 2, 3, 4, 5, 6, 7);
+                  const Vec8 xy03 = __builtin_shufflevector(t[0], t[1], 0, 4, 8, 12, 1, 5, 9, 13),
+                             xy47 = __builtin_shufflevector(t[2], t[3], 0, 4, 8, 12, 1, 5, 9, 13),
+                             z03  = __builtin_shufflevector(t[0], t[1], 2, 6, 10, 14, 2, 6, 10, 14),
+                             z47  = __builtin_shufflevector(t[2], t[3], 2, 6, 10, 14, 2, 6, 10, 14);
+                  *reinterpret_cast<Vec8 *>(&xe[n][0][l0]) =
+                    __builtin_shufflevector(xy03, xy47, 0, 1, 2, 3, 8, 9, 10, 11);
+                  *reinterpret_cast<Vec8 *>(&xe[n][1][l0]) =
+                    __builtin_shufflevector(xy03, xy47, 4, 5, 6, 7, 12, 13, 14, 15);
+                  *reinterpret_cast<Vec8 *>(&xe[n][2][l0]) = __builtin_shufflevector(z03, z47, 0, 1, 2, 3, 8, 9, 10, 11);
                 }
-              const __m512d xy03 = _mm512_permutex2var_pd(t[0], xy, t[1]);
-              const __m512d xy47 = _mm512_permutex2var_pd(t[2], xy, t[3]);
-              const __m512d z03  = _mm512_permutex2var_pd(t[0], z, t[1]);
-              const __m512d z47  = _mm512_permutex2var_pd(t[2], z, t[3]);
-              _mm512_store_pd(xe[n][0], _mm512_permutex2var_pd(xy03, low, xy47));
-              _mm512_store_pd(xe[n][1], _mm512_permutex2var_pd(xy03, high, xy47));
-              _mm512_store_pd(xe[n][2], _mm512_permutex2var_pd(z03, low, z47));
-            }
-          return;
-        }
-#endif
+            return;
+          }
+      if constexpr (W % 4 == 0)
+        if (wide)
+          {
+            for (unsigned int n = 0; n < 8; ++n)
+              for (unsigned int l0 = 0; l0 < W; l0 += 4)
+                {
+                  // Within the halves of two lanes' loads: [x x' z z'] and
+                  // [y y' . .]; then the halves joined.
+                  const Vec4  r0 = load(idx[n][l0]), r1 = load(idx[n][l0 + 1]), r2 = load(idx[n][l0 + 2]),
+                             r3 = load(idx[n][l0 + 3]);
+                  const Vec4 xz01 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6),
+                             xz23 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6),
+                             y01  = __builtin_shufflevector(r0, r1, 1, 5, 3, 7),
+                             y23  = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+                  *reinterpret_cast<AlignedVec4 *>(&xe[n][0][l0]) = __builtin_shufflevector(xz01, xz23, 0, 1, 4, 5);
+                  *reinterpret_cast<AlignedVec4 *>(&xe[n][1][l0]) = __builtin_shufflevector(y01, y23, 0, 1, 4, 5);
+                  *reinterpret_cast<AlignedVec4 *>(&xe[n][2][l0]) = __builtin_shufflevector(xz01, xz23, 2, 3, 6, 7);
+                }
+            return;
+          }
       for (unsigned int n = 0; n < 8; ++n)
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int l = 0; l < W; ++l)
@@ -443,7 +472,10 @@ namespace anvil::Element
     const unsigned int e = cell_index.size();
     nodes.resize(std::max<std::size_t>(nodes.size(), (e / W + 1) * 8 * W));
     for (unsigned int n = 0; n < 8; ++n)
-      nodes[(e / W) * 8 * W + n * W + e % W] = node[n];
+      {
+        nodes[(e / W) * 8 * W + n * W + e % W] = node[n];
+        last_node_offset = std::max(last_node_offset, node[n]);
+      }
     cell_index.push_back(cell);
     global_id.push_back(id == static_cast<unsigned long>(-1) ? cell : id);
     energy_weight.push_back(owned ? 1. : 0.);
@@ -1338,8 +1370,14 @@ namespace anvil::Element
             for (unsigned int n = 0; n < 8; ++n)
               idx[n][l] = node(el[l], n);
         alignas(64) double xe[8][3][W], ve[8][3][W];
-        gather_nodes(x, idx, xe);
-        gather_nodes(v, idx, ve);
+        // (The batch's last node: 64 offsets, no branch.)
+        unsigned int top = 0;
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int l = 0; l < W; ++l)
+            top = std::max(top, idx[n][l]);
+        const bool wide = top < last_node_offset;
+        gather_nodes(x, idx, xe, wide);
+        gather_nodes(v, idx, ve, wide);
 
         // Positions and velocities in the element's Walsh basis; the
         // Jacobians of position and velocity at the centroid.

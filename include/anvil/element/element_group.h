@@ -447,6 +447,9 @@ namespace anvil::Element
         node-major within a batch (node(e, n)), so that the batched loop
         reads a batch's node n as one vector. */
     std::vector<unsigned int> nodes;
+    /** The largest of them: a node below it has the four values the
+        batched gather reads (its three and one more) in the nodal vector. */
+    unsigned int last_node_offset = 0;
     static constexpr unsigned int W = MaterialModel::Interface::batch_size;
     unsigned int node(const unsigned int e, const unsigned int n) const
     {
