@@ -3,7 +3,9 @@
  * The contact pairs of a scene as one family (contact/contact_pairs.h).
  */
 #include <anvil/contact/contact_pairs.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 #include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/mpi.h>

@@ -3,7 +3,9 @@
  * The solid bodies of a scene as one family (element/solid_bodies.h).
  */
 #include <anvil/element/solid_bodies.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/element/element_group.h>
+#include <anvil/simulator/records.h>
 #include <anvil/utilities/text.h>
 
 #include <deal.II/base/mpi.h>

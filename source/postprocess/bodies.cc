@@ -5,7 +5,9 @@
  * bounding box, dissipated energy and reference volume.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/element/element_group.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/mpi.h>
 

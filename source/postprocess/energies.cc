@@ -4,7 +4,7 @@
  * term by term, with its total and the balance error.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/simulator/records.h>
 
 #include <iomanip>
 

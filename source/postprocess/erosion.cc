@@ -5,7 +5,7 @@
  * volume), written once the first element erodes.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/simulator/records.h>
 
 namespace anvil::Postprocess
 {

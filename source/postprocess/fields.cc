@@ -9,7 +9,8 @@
  * element groups.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/element/element_group.h>
+#include <anvil/simulator/records.h>
 #include <anvil/utilities/vtu_file.h>
 
 #include <deal.II/base/quadrature_lib.h>

@@ -4,7 +4,9 @@
  * (a conservation check: constant without supports and gravity).
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/mpi.h>
 

@@ -5,7 +5,7 @@
  * skips them with a line.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/simulator/records.h>
 #include <anvil/utilities/python_script.h>
 
 #include <deal.II/base/utilities.h>

@@ -5,7 +5,8 @@
  * displacement feeds summary.csv and the end criterion.
  */
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/element/element_group.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/mpi.h>
 

@@ -6,7 +6,7 @@
  */
 #include <anvil/boundary_conditions/boundary_condition.h>
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/mpi.h>
 

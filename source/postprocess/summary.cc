@@ -9,7 +9,9 @@
  */
 #include <anvil/boundary_conditions/boundary_condition.h>
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/element/element_group.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/mpi.h>
 

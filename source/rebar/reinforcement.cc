@@ -5,7 +5,9 @@
  */
 #include <anvil/laws/seed_laws.h>
 #include <anvil/rebar/reinforcement.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 #include <anvil/utilities/vtu_file.h>
 #include <anvil/utilities/input_error.h>
 #include <anvil/utilities/text.h>

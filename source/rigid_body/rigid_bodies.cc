@@ -3,7 +3,9 @@
  * The rigid bodies of a scene as one family (rigid_body/rigid_bodies.h).
  */
 #include <anvil/rigid_body/rigid_bodies.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/mesh/body.h>
+#include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>

@@ -14,6 +14,7 @@
 #include <anvil/rebar/rebar.h>
 #include <anvil/rigid_body/rigid_bodies.h>
 #include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/records.h>
 #include <anvil/simulator/simulator_access.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -37,99 +38,6 @@
 
 namespace anvil
 {
-  /** Energies of the whole scene (seed Eq. (21)). Units: J. */
-  struct Energies
-  {
-    double kinetic       = 0;
-    double internal      = 0;
-    double hourglass     = 0;
-    double contact       = 0;
-    double friction      = 0;
-    /** Energy held by eroded elements when they were removed. */
-    double eroded        = 0;
-    /** Work done on the bond of bond-slip reinforcement (elastic and
-        dissipated). */
-    double bond          = 0;
-    /** The energy the central difference scheme itself removes when the
-        step changes, sum over steps of 1/4 (dt^{n+1/2} - dt^{n-1/2})
-        F^n . (v^{n+1/2} - v^{n-1/2}) (doc/theory.md, "Energy balance with
-        variable steps"); negative: energy created. */
-    double step_change   = 0;
-    /** Work of the bulk viscosity (dissipated). */
-    double viscous       = 0;
-    /** Work of the mass-proportional damping ('Mass damping'; dissipated). */
-    double damping       = 0;
-    /** Energy taken out of the analysis with the bodies a stage removes
-        ('Inactive bodies': their kinetic energy, and the energy of their
-        contact springs, when they were removed). */
-    double removed       = 0;
-    double external_work = 0;
-    double total() const
-    {
-      return kinetic + internal + hourglass + viscous + damping + contact + friction + eroded +
-             removed + bond + step_change;
-    }
-  };
-
-  /** A named output point: the node of a body nearest to a given point. */
-  struct Probe
-  {
-    std::string      name;
-    std::string      body;
-    dealii::Point<3> point;
-    /** A one-node set of the body's mesh file that gives 'point' (upper
-        case), or empty. */
-    std::string      node_set;
-    /** Global x-dof index of the chosen node, and its owner. */
-    unsigned long x_dof = 0;
-    int           owner = 0;
-    /** On the owner: the element group and element whose stress the probe
-        reports (of the elements around the node, the one with the smallest
-        scene-wide id, so that every partition reports the same). */
-    int          group   = -1;
-    unsigned int element = 0;
-  };
-
-  /** Figures of the run that summary.csv reports (source/simulator/
-      summary.cc); updated every step from replicated data, the probe on
-      rank 0 at each history row. */
-  struct RunSummary
-  {
-    double peak_displacement     = 0;
-    double residual_displacement = 0;
-    double peak_contact_force    = 0;
-    double contact_start = -1, contact_end = -1;
-    double initial_kinetic       = 0;
-    double max_hourglass_ratio   = 0;
-    double max_balance_error     = 0;
-    double peak_reaction         = 0;
-    /** The steps the elements alone would have needed (the sum over steps
-        of dt / dt_elements) and the steps whose size the contact springs
-        set. */
-    double       element_steps         = 0;
-    unsigned int contact_limited_steps = 0;
-    /** Start of the current quiet period (end criterion), -1: none; the
-        first probe's displacement summed over its history rows. */
-    double       quiet_since = -1;
-    double       quiet_displacement_sum = 0;
-    unsigned int quiet_rows = 0;
-    bool   ended_early = false;
-    /** Every probe's peak and last displacement magnitude and its sum over
-        the quiet period's rows, in the order of 'Probes' (summary.csv's
-        peak_displacement_NAME_m, residual_displacement_NAME_m). */
-    std::vector<double> probe_peak, probe_last, probe_quiet_sum;
-
-    template <class Archive>
-    void serialize(Archive &ar)
-    {
-      ar &peak_displacement &residual_displacement &peak_contact_force &contact_start &contact_end
-        &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
-          &contact_limited_steps &quiet_since &quiet_displacement_sum &quiet_rows &ended_early &probe_peak
-            &probe_last &probe_quiet_sum;
-    }
-  };
-
-
   /** A stage of a scene (doc/user_guide.md, "Stages"): its name and the
       entries it changes ('PATH=VALUE', as --set), applied to the scene for
       this stage and the stages after it. */
