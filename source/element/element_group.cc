@@ -1271,6 +1271,47 @@ namespace anvil::Element
   }
 
 
+  double ElementGroup::stable_step(const unsigned int e, const double (&X)[8][3]) const
+  {
+    // As loop() at dt = 0: the Jacobian at each point (the centroid for
+    // one-point elements), the largest |grad xi|^2, the volume; then
+    // element_step2()'s arithmetic and the damper's bound.
+    const bool         one_point = integration == Integration::one_point;
+    const unsigned int q0 = one_point ? 8 : 0, nq = one_point ? 1 : 8;
+    double             volume = 0, max_grad2 = 0;
+    for (unsigned int q = q0; q < q0 + nq; ++q)
+      {
+        double J[3][3] = {};
+        for (unsigned int n = 0; n < 8; ++n)
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int c = 0; c < 3; ++c)
+              J[a][c] += X[n][a] * tables.dN[q][n][c];
+        const double det = det3(J);
+        if (!(det > 0))
+          return 0.;
+        double Ji[3][3];
+        inv3(J, det, Ji);
+        for (unsigned int c = 0; c < 3; ++c)
+          max_grad2 = std::max(max_grad2, Ji[c][0] * Ji[c][0] + Ji[c][1] * Ji[c][1] + Ji[c][2] * Ji[c][2]);
+        volume += det * tables.weight[q];
+      }
+    const double rho0 = material.density(), M = material.wave_modulus();
+    const double rho  = rho0 * reference_volume[e] / volume;
+    const double A2   = max_face_area2([&](unsigned int n, unsigned int a) { return X[n][a]; });
+    const double shape = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
+    double       dt_bulk2 = 1.;
+    if (bulk_viscosity())
+      bulk_viscosity_pressure(0., 2. / std::sqrt(max_grad2), rho, std::sqrt(M / rho), dt_bulk2);
+    double dt2 = 4. / max_grad2 * shape * rho / M * dt_bulk2;
+    if (hourglass == HourglassType::viscous)
+      {
+        const double k = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
+        dt2            = std::min(dt2, viscous_hourglass_step2(rho * volume, k, mass_factor[e]));
+      }
+    return std::sqrt(dt2);
+  }
+
+
   // A failed element's stresses go to zero and the energy it holds (strain,
   // plastic and hourglass work) moves from the internal and hourglass
   // energies to the eroded one.

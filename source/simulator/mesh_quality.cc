@@ -2,7 +2,8 @@
  * @file
  * The elements a run should know about before it starts (LS-DYNA prints
  * the elements with the smallest time steps): each deformable element's
- * stable step L_e / c from its reference shape, and its scaled Jacobian,
+ * stable step in its reference shape (the step the loop takes for it,
+ * ElementGroup::stable_step()), and its scaled Jacobian,
  * the smallest over its eight corners of det[e_x, e_y, e_z] / (|e_x| |e_y|
  * |e_z|) with e_* the edges from that corner (1 for a cube, sin of the
  * corner angle for a sheared one, 0.26 at a 165-degree corner).
@@ -46,40 +47,6 @@ namespace anvil
         }
       return smallest;
     }
-
-    // L_e = 2 / max_c |grad xi_c| at the centre (the elements' own
-    // characteristic length, element_group.cc).
-    double characteristic_length(const double (&X)[8][3])
-    {
-      double J[3][3] = {};
-      for (unsigned int n = 0; n < 8; ++n)
-        for (unsigned int c = 0; c < 3; ++c)
-          {
-            // d N_n / d xi_c at the centre, xi in [-1, 1]^3.
-            const double s = ((n >> c) & 1) ? 0.125 : -0.125;
-            for (unsigned int a = 0; a < 3; ++a)
-              J[a][c] += X[n][a] * s;
-          }
-      const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-      if (!(det > 0))
-        return 0;
-      // Rows of J^{-1} are grad xi_c: the cofactors of J over det.
-      double grad2 = 0;
-      for (unsigned int c = 0; c < 3; ++c)
-        {
-          const unsigned int a = (c + 1) % 3, b = (c + 2) % 3;
-          double             g[3];
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              const unsigned int p = (d + 1) % 3, q = (d + 2) % 3;
-              g[d] = (J[p][a] * J[q][b] - J[p][b] * J[q][a]) / det;
-            }
-          grad2 = std::max(grad2, g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-        }
-      return 2. / std::sqrt(grad2);
-    }
   } // namespace
 
 
@@ -99,7 +66,6 @@ namespace anvil
         const auto &material = group.get_material();
         if (material.is_rigid())
           continue;
-        const double c = std::sqrt(material.wave_modulus() / material.density());
         for (unsigned int e = 0; e < group.n_elements(); ++e)
           if (group.element_is_owned(e))
             {
@@ -115,7 +81,7 @@ namespace anvil
                   entry.y += 0.125 * X[n][1];
                   entry.z += 0.125 * X[n][2];
                 }
-              entry.step     = characteristic_length(X) / c;
+              entry.step     = group.stable_step(e, X);
               entry.jacobian = scaled_jacobian(X);
               entries.push_back(entry);
             }
@@ -159,11 +125,12 @@ namespace anvil
     if (smallest.empty())
       return;
     std::ostringstream out;
-    out << std::setprecision(3) << "  smallest element steps (L_e / c of the reference shape, before the safety "
+    out << std::setprecision(3) << "  smallest element steps (in the reference shape, before the safety "
         << "factor):";
     for (const auto &e : smallest)
       out << "\n    element " << e.id << " of body '" << bodies[int(e.body)].name << "' at (" << e.x << ", "
-          << e.y << ", " << e.z << "): " << e.step << " s, scaled Jacobian " << e.jacobian;
+          << e.y << ", " << e.z << "): " << std::setprecision(4) << e.step << " s, scaled Jacobian "
+          << std::setprecision(3) << e.jacobian;
     pcout << out.str() << std::endl;
     if (n_poor > 0 && !poorest.empty())
       {

@@ -298,6 +298,14 @@ namespace anvil::Element
     /** Bytes of state held per element (solver arrays only). */
     double memory_per_element() const;
 
+    /** The stable step of element @p e at rest in the positions @p X,
+        before the safety factor: the step the loop takes for it (seed Eq.
+        (23) with its characteristic length min(2 / max |grad xi|, V /
+        A_max), the mass scaling's factor, the bulk viscosity's factor at
+        rest, and the viscous hourglass damper's own bound), so that the
+        report before a run names the elements that set the step. */
+    double stable_step(unsigned int e, const double (&X)[8][3]) const;
+
     /** Batches the batched loop handed to the reference loop because an
         element's Jacobian was not positive (tests: the fast path must have
         run). */
