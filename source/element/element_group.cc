@@ -405,6 +405,19 @@ namespace anvil::Element
         r = r * (4. - x * r * r * r) * (1. / 3.);
       return r;
     }
+
+    /** The Jacobian dX/dxi at point @p q of the shape-function tables (the
+        8 Gauss points, 8: the centroid) of the hexahedron @p X. */
+    inline void reference_jacobian(const double (&X)[8][3], const unsigned int q, double (&J)[3][3])
+    {
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int c = 0; c < 3; ++c)
+          J[a][c] = 0;
+      for (unsigned int I = 0; I < 8; ++I)
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int c = 0; c < 3; ++c)
+            J[a][c] += X[I][a] * tables.dN[q][I][c];
+    }
   } // namespace
 
 
@@ -414,11 +427,8 @@ namespace anvil::Element
     const double g = gauss;
     for (unsigned int q = 0; q < 8; ++q)
       {
-        double J[3][3] = {};
-        for (unsigned int I = 0; I < 8; ++I)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int c = 0; c < 3; ++c)
-              J[a][c] += X[I][a] * tables.dN[q][I][c];
+        double J[3][3];
+        reference_jacobian(X, q, J);
         const double jxw = det3(J);
         for (unsigned int I = 0; I < 8; ++I)
           {
@@ -485,11 +495,8 @@ namespace anvil::Element
     double volume = 0;
     for (unsigned int q = 0; q < 8; ++q)
       {
-        double J[3][3] = {};
-        for (unsigned int I = 0; I < 8; ++I)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int c = 0; c < 3; ++c)
-              J[a][c] += X[I][a] * tables.dN[q][I][c];
+        double J[3][3];
+        reference_jacobian(X, q, J);
         volume += det3(J);
       }
     reference_volume.push_back(volume);
@@ -498,11 +505,8 @@ namespace anvil::Element
       for (unsigned int qq = 0; qq < n_qp; ++qq)
         {
           const unsigned int q       = (n_qp == 1 ? 8 : qq);
-          double             J[3][3] = {};
-          for (unsigned int I = 0; I < 8; ++I)
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int c = 0; c < 3; ++c)
-                J[a][c] += X[I][a] * tables.dN[q][I][c];
+          double             J[3][3];
+          reference_jacobian(X, q, J);
           const double d = det3(J);
           double       Ji[3][3];
           inv3(J, d, Ji);
@@ -1281,11 +1285,8 @@ namespace anvil::Element
     double             volume = 0, max_grad2 = 0;
     for (unsigned int q = q0; q < q0 + nq; ++q)
       {
-        double J[3][3] = {};
-        for (unsigned int n = 0; n < 8; ++n)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int c = 0; c < 3; ++c)
-              J[a][c] += X[n][a] * tables.dN[q][n][c];
+        double J[3][3];
+        reference_jacobian(X, q, J);
         const double det = det3(J);
         if (!(det > 0))
           return 0.;
