@@ -305,6 +305,28 @@ namespace anvil
                         "energy for 'End quiet time' (a member that has settled); "
                         "0: off. With 'End kinetic energy fraction' too, both "
                         "must hold. Units: none.");
+      prm.declare_entry("End contact pairs",
+                        "",
+                        Patterns::List(Patterns::Anything()),
+                        "The contact pairs that must carry no force for the end "
+                        "criteria above (names from 'Contact pairs'); empty: every "
+                        "pair. A scene whose bodies stay in contact (a member on a "
+                        "support modelled by contact) names the impact's pair "
+                        "alone.");
+      prm.declare_entry("Summary probe",
+                        "",
+                        Patterns::Anything(),
+                        "The probe whose peak and residual displacement are "
+                        "summary.csv's peak_displacement_m and "
+                        "residual_displacement_m, the figures studies plot (a name "
+                        "from 'Probes'); empty: the first probe. Every probe's "
+                        "figures are in summary.csv by name as well.");
+      prm.declare_entry("Summary contact pair",
+                        "",
+                        Patterns::Anything(),
+                        "The contact pair whose peak force and contact duration are "
+                        "summary.csv's peak_contact_force_N and contact_duration_s "
+                        "(a name from 'Contact pairs'); empty: the first pair.");
       prm.declare_entry("Duration",
                         "0",
                         Patterns::Double(0.),
@@ -712,9 +734,28 @@ namespace anvil
         end_time         = prm.get_double("End time");
         time_step_factor = prm.get_double("Time step safety factor");
         max_steps        = prm.get_integer("Maximum number of steps");
-        end_kinetic_fraction = prm.get_double("End kinetic energy fraction");
-        end_quiet_time       = prm.get_double("End quiet time");
-        end_kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
+        end_criterion.kinetic_fraction       = prm.get_double("End kinetic energy fraction");
+        end_criterion.quiet_time             = prm.get_double("End quiet time");
+        end_criterion.kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
+        // The pairs and the probe these entries name, by index.
+        const auto index_of = [](const std::string &entry, const std::string &name,
+                                 const std::vector<std::string> &names, const std::string &list) {
+          const auto it = std::find(names.begin(), names.end(), name);
+          if (it == names.end())
+            throw InputError("entry 'Simulation/" + entry + "': '" + name + "' is not in '" + list + "' (" +
+                             (names.empty() ? std::string("none") : join(names)) + ")");
+          return static_cast<unsigned int>(it - names.begin());
+        };
+        end_criterion.pairs.clear();
+        for (const auto &name : names(prm.get("End contact pairs")))
+          end_criterion.pairs.push_back(index_of("End contact pairs", name, pair_names, "Contact pairs"));
+        if (end_criterion.pairs.empty())
+          for (unsigned int p = 0; p < pair_names.size(); ++p)
+            end_criterion.pairs.push_back(p);
+        const std::string summary_probe = prm.get("Summary probe"), summary_pair = prm.get("Summary contact pair");
+        summary_subjects.probe = summary_probe.empty() ? 0 : index_of("Summary probe", summary_probe, probe_names, "Probes");
+        summary_subjects.pair =
+          summary_pair.empty() ? 0 : index_of("Summary contact pair", summary_pair, pair_names, "Contact pairs");
         duration                   = prm.get_double("Duration");
         mass_damping               = prm.get_double("Mass damping");
         const auto inactive_names  = names(prm.get("Inactive bodies"));

@@ -1,9 +1,9 @@
 /**
  * @file
  * summary.csv: the figures of a run that studies and tests read (peak and
- * residual displacement of the first probe, peak force and duration of the
- * first contact pair, energy conversion, hourglass share, balance, cost),
- * and the end criterion of an impact that is over.
+ * residual displacement of the summary probe, peak force and duration of
+ * the summary contact pair, energy conversion, hourglass share, balance,
+ * cost), and the end criterion of an impact that is over.
  */
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/python_script.h>
@@ -31,25 +31,26 @@ namespace anvil
       summary.max_hourglass_ratio =
         std::max(summary.max_hourglass_ratio, energies.hourglass / energies.internal);
 
-    bool in_contact = false;
     const auto &contact_results = contact->results();
-    for (unsigned int p = 0; p < contact_results.size(); ++p)
-      {
-        const auto  &f     = contact_results[p].force_on_first;
-        const double force = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-        if (force > 0)
-          in_contact = true;
-        if (p == 0 && force > 0)
-          {
-            summary.peak_contact_force = std::max(summary.peak_contact_force, force);
-            if (summary.contact_start < 0)
-              summary.contact_start = t;
-            summary.contact_end = t;
-          }
-      }
+    auto        force_of        = [&](const unsigned int p) {
+      const auto &f = contact_results[p].force_on_first;
+      return std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    };
+    if (summary_subjects.pair < contact_results.size())
+      if (const double force = force_of(summary_subjects.pair); force > 0)
+        {
+          summary.peak_contact_force = std::max(summary.peak_contact_force, force);
+          if (summary.contact_start < 0)
+            summary.contact_start = t;
+          summary.contact_end = t;
+        }
 
-    if (end_kinetic_fraction <= 0 && end_kinetic_internal_ratio <= 0)
+    const auto &end = end_criterion;
+    if (!end.asked())
       return false;
+    bool in_contact = false;
+    for (const unsigned int p : end.pairs)
+      in_contact = in_contact || (p < contact_results.size() && force_of(p) > 0);
     double rigid_kinetic = 0;
     for (const auto &b : bodies)
       if (b.is_rigid())
@@ -59,8 +60,8 @@ namespace anvil
     // has settled (against its internal energy): each one set must hold.
     const bool quiet =
       !in_contact &&
-      (end_kinetic_fraction <= 0 || deformable_kinetic < end_kinetic_fraction * std::abs(initial_energy)) &&
-      (end_kinetic_internal_ratio <= 0 || deformable_kinetic < end_kinetic_internal_ratio * energies.internal);
+      (end.kinetic_fraction <= 0 || deformable_kinetic < end.kinetic_fraction * std::abs(initial_energy)) &&
+      (end.kinetic_internal_ratio <= 0 || deformable_kinetic < end.kinetic_internal_ratio * energies.internal);
     if (!quiet)
       {
         summary.quiet_since            = -1;
@@ -71,7 +72,7 @@ namespace anvil
       }
     if (summary.quiet_since < 0)
       summary.quiet_since = t;
-    if (t - summary.quiet_since >= end_quiet_time)
+    if (t - summary.quiet_since >= end.quiet_time)
       {
         summary.ended_early = true;
         return true;
@@ -80,7 +81,8 @@ namespace anvil
   }
 
 
-  // At each history row, on rank 0: the first probe's displacement.
+  // At each history row, on rank 0: every probe's displacement, and the
+  // summary probe's as summary.csv's displacement.
   void Simulator::record_probe_summary(const std::vector<double> &probe_values)
   {
     if (probes.empty())
@@ -98,11 +100,12 @@ namespace anvil
         if (summary.quiet_since >= 0)
           summary.probe_quiet_sum[p] += u;
       }
-    summary.peak_displacement     = summary.probe_peak[0];
-    summary.residual_displacement = summary.probe_last[0];
+    const unsigned int p          = summary_subjects.probe;
+    summary.peak_displacement     = summary.probe_peak[p];
+    summary.residual_displacement = summary.probe_last[p];
     if (summary.quiet_since >= 0)
       {
-        summary.quiet_displacement_sum = summary.probe_quiet_sum[0];
+        summary.quiet_displacement_sum = summary.probe_quiet_sum[p];
         ++summary.quiet_rows;
       }
   }

@@ -854,15 +854,17 @@ namespace anvil
     write_status("finished", time, wall_total, 0.);
     if (summary.ended_early)
       {
-        pcout << "  " << (end_kinetic_fraction > 0 ? "the impact is over" : "the bodies have settled")
-              << " (no contact force, kinetic energy of the deformable bodies below ";
-        if (end_kinetic_fraction > 0)
-          pcout << end_kinetic_fraction << " E_0";
-        if (end_kinetic_fraction > 0 && end_kinetic_internal_ratio > 0)
+        const auto &end = end_criterion;
+        pcout << "  " << (end.kinetic_fraction > 0 ? "the impact is over" : "the bodies have settled") << " (no "
+              << (end.pairs.size() == contact->n_pairs() ? "contact force" : "force in the pairs it follows")
+              << ", kinetic energy of the deformable bodies below ";
+        if (end.kinetic_fraction > 0)
+          pcout << end.kinetic_fraction << " E_0";
+        if (end.kinetic_fraction > 0 && end.kinetic_internal_ratio > 0)
           pcout << " and ";
-        if (end_kinetic_internal_ratio > 0)
-          pcout << end_kinetic_internal_ratio << " E_int";
-        pcout << " for " << end_quiet_time << " s): the run ends before its end time" << std::endl;
+        if (end.kinetic_internal_ratio > 0)
+          pcout << end.kinetic_internal_ratio << " E_int";
+        pcout << " for " << end.quiet_time << " s): the run ends before its end time" << std::endl;
       }
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance_error;

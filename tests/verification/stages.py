@@ -171,6 +171,53 @@ if c.check_true("settling block runs", code == 0, err.strip()[-300:]):
     c.check_below("energy balance error (gravity's work external, damping booked)", max(e["balance_error"]), 1e-4)
     c.check_true("the damping absorbed energy", e["damping"][-1] > 0, f"{e['damping'][-1]:.4g} J")
 
+# 3b. The pairs an end criterion follows ('End contact pairs') and the
+# subjects of summary.csv ('Summary probe', 'Summary contact pair'): the same
+# block standing free on a rigid floor by contact, a rigid lid far above it.
+# The floor pair carries the block's weight for ever, so a criterion that
+# follows every pair never holds (the stage runs its whole 0.5 s); one that
+# follows the lid's pair ends the stage once the block has settled, at the
+# same sag. Summary.csv reports the probe and the pair named.
+weight = rho * side ** 2 * H * g
+sag = rho * g * H ** 2 / (2 * E)
+floor = os.path.join(src, "tests", "verification", "block_on_floor.prm")
+named = """  set Summary probe = middle
+  set Summary contact pair = lid
+end
+subsection Stage settle
+  set Changes = Simulation/Mass damping=300; Simulation/End kinetic to internal ratio=1e-6; \\
+                Simulation/End quiet time=0.05; Simulation/Duration=0.5; Simulation/End contact pairs=lid
+"""
+for name, changes in (("every_pair", ""), ("lid_pair", named)):
+    prm = write_scene(os.path.join(work, name + ".prm"), text=f"include {floor}\nsubsection Simulation\n{quiet}{changes}end\n")
+    code, out, err = run_anvil(args.anvil, prm, cwd=work)
+    if not c.check_true(f"block on a floor ({name}) runs", code == 0, err.strip()[-300:]):
+        continue
+    s = summary(name, "settle")
+    p = read_csv(os.path.join(work, "output", name, "settle", "probe_top.csv"))
+    c.check(f"{name}: top displacement at the end / rho g H^2 / (2 E)", -p["uz"][-1] / sag, 1.0, 0.01)
+    if name == "every_pair":
+        c.check_true("following every pair (the floor carries the weight): the stage runs its whole 0.5 s",
+                     s["ended_by_criterion"] == 0 and abs(s["end_time_s"] - 0.55) < 1e-9,
+                     f"ended at {s['end_time_s']:.4f} s")
+        c.check_true("summary.csv by default: the first probe's displacement, the first pair's force",
+                     s["peak_displacement_m"] == s["peak_displacement_top_m"] and
+                     s["peak_contact_force_N"] >= weight, f"{s['peak_contact_force_N']:.4g} N")
+    else:
+        c.check_true("following the lid's pair: the stage ends by its criterion",
+                     s["ended_by_criterion"] == 1 and s["end_time_s"] < 0.5, f"at {s['end_time_s']:.4f} s")
+        c.check_true("summary.csv follows the probe and the pair named (the middle, the lid: no force)",
+                     s["peak_displacement_m"] == s["peak_displacement_middle_m"] and
+                     s["peak_displacement_m"] != s["peak_displacement_top_m"] and s["peak_contact_force_N"] == 0,
+                     f"{s['peak_displacement_m']:.4g} m, {s['peak_contact_force_N']:.4g} N")
+for name, entry, words in (("bad_summary_probe", "Summary probe = bottom", ["Summary probe", "bottom", "top"]),
+                           ("bad_end_pairs", "End contact pairs = lid, roof", ["End contact pairs", "roof"])):
+    prm = write_scene(os.path.join(work, name + ".prm"), text=f"include {floor}\nsubsection Simulation\n  set {entry}\nend\n")
+    code, out, err = run_anvil(args.anvil, prm, cwd=work, extra_args=["--check"])
+    lines = [l for l in err.splitlines() if l.strip()]
+    c.check_true(f"{name}: exit 2 with one line naming the entry and the name", code == 2 and len(lines) == 1 and
+                 all(w in lines[0] for w in words), err.strip())
+
 # 4. A body taken out: the hammer is removed before it strikes.
 hob = os.path.join(src, "prm", "hammer_on_block", "hammer_on_block.prm")
 prm = write_scene(os.path.join(work, "removed.prm"), text=f"""include {hob}

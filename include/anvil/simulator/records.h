@@ -66,6 +66,37 @@ namespace anvil
     unsigned int element = 0;
   };
 
+  /** When a run ends before its end time ('Simulation/End ...' entries):
+      once the pairs named carry no force and the deformable bodies'
+      kinetic energy has stayed below the bounds set for quiet_time. */
+  struct EndCriterion
+  {
+    /** Kinetic energy below this fraction of the initial energy (an
+        impact that is over); 0: not asked. */
+    double kinetic_fraction = 0;
+    /** Kinetic energy below this fraction of the internal energy (a member
+        that has settled); 0: not asked. */
+    double kinetic_internal_ratio = 0;
+    double quiet_time             = 0.01;
+    /** The contact pairs that must carry no force, by index ('End contact
+        pairs'; every pair when the entry is empty). */
+    std::vector<unsigned int> pairs;
+    bool                      asked() const
+    {
+      return kinetic_fraction > 0 || kinetic_internal_ratio > 0;
+    }
+  };
+
+  /** The probe and the contact pair whose figures are summary.csv's
+      peak_displacement_m, residual_displacement_m, peak_contact_force_N and
+      contact_duration_s ('Simulation/Summary probe', 'Summary contact
+      pair'; the first of each by default). */
+  struct SummarySubjects
+  {
+    unsigned int probe = 0;
+    unsigned int pair  = 0;
+  };
+
   /** Figures of the run that summary.csv reports (source/simulator/
       summary.cc); updated every step from replicated data, the probe on
       rank 0 at each history row. */
@@ -85,7 +116,7 @@ namespace anvil
     double       element_steps         = 0;
     unsigned int contact_limited_steps = 0;
     /** Start of the current quiet period (end criterion), -1: none; the
-        first probe's displacement summed over its history rows. */
+        summary probe's displacement summed over its history rows. */
     double       quiet_since = -1;
     double       quiet_displacement_sum = 0;
     unsigned int quiet_rows = 0;

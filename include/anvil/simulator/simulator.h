@@ -281,15 +281,8 @@ namespace anvil
     double      history_interval;
     double      energy_tolerance;
     double      min_dt_ratio;
-    /** End criterion: the run ends once no contact pair carries force and
-        the kinetic energy of the deformable bodies has stayed below
-        end_kinetic_fraction E_0 for end_quiet_time (0: off). */
-    double      end_kinetic_fraction = 0;
-    double      end_quiet_time       = 0.01;
-    /** End criterion of a settling stage: the deformable bodies' kinetic
-        energy below this fraction of the internal energy for
-        end_quiet_time (0: off). */
-    double      end_kinetic_internal_ratio = 0;
+    EndCriterion    end_criterion;
+    SummarySubjects summary_subjects;
     /** 'Duration' (> 0): the run ends this long after its start (a
         stage's: after the state it starts from), at stage_start +
         duration; 0: at 'End time'. */
