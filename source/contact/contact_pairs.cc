@@ -53,12 +53,6 @@ namespace anvil::Contact
     analytic_body.assign(n_pairs, {{-1, -1}});
     pair_body.clear();
     contact_frequency_squared = 0;
-    auto body_index = [&](const std::string &name) {
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b].name == name)
-          return b;
-      return numbers::invalid_unsigned_int;
-    };
     for (unsigned int p = 0; p < n_pairs; ++p)
       {
         std::vector<Contact::SegmentDescription> segments[2];

@@ -28,7 +28,10 @@ namespace anvil::Postprocess
   {
     std::vector<std::unique_ptr<Interface>> list;
     for (const auto &[name, entry] : registry())
-      list.push_back(entry.create(simulator));
+      {
+        list.push_back(entry.create(simulator));
+        list.back()->plugin_name = name;
+      }
     // By order, then name (the map's order; a stable sort keeps it).
     std::stable_sort(list.begin(), list.end(), [](const auto &a, const auto &b) { return a->order() < b->order(); });
     return list;

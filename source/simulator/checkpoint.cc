@@ -16,8 +16,10 @@
 
 #include <boost/crc.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +89,33 @@ namespace anvil
 
 
 
+  namespace
+  {
+    /** A family's or a postprocessor's state in a checkpoint, under its
+        name and the version of its record. */
+    struct Record
+    {
+      std::string  key;
+      unsigned int version = 0;
+      std::string  state;
+
+      void serialize(StateArchive &ar)
+      {
+        ar &key &version &state;
+      }
+    };
+  } // namespace
+
+
+  RecordMismatch::RecordMismatch(const std::string &what)
+    : std::runtime_error(what)
+  {}
+
+
+  // The driver's own state, then one record per family and postprocessor,
+  // keyed by name with its version: a record that changes (a field added)
+  // raises its own version, and a checkpoint holding the old one is refused
+  // by name (RecordMismatch) while the other records stay readable.
   void Simulator::serialize(StateArchive &ar)
   {
     ar &position &velocity &force &mass &good_position &good_velocity &good_time;
@@ -95,10 +124,48 @@ namespace anvil
           &summary &loop &peak_bc_reaction &stage_start &damping_force_old;
     // (The prescribed velocities are the scene's, not state: a new stage may change them.)
     ar &constrained_reaction &constrained_velocity_old &bc_reaction;
+
+    struct Part
+    {
+      std::string                              key;
+      unsigned int                             version;
+      std::function<void(StateArchive &)> io;
+    };
+    std::vector<Part> parts;
     for (auto *family : contributors())
-      family->serialize(ar);
+      parts.push_back({"family '" + family->name() + "'", family->state_version(),
+                       [family](StateArchive &a) { family->serialize(a); }});
     for (auto &postprocessor : postprocessors)
-      postprocessor->serialize(ar);
+      parts.push_back({"postprocessor '" + postprocessor->plugin_name + "'", postprocessor->state_version(),
+                       [p = postprocessor.get()](StateArchive &a) { p->serialize(a); }});
+    std::vector<Record> records;
+    if (!ar.is_loading())
+      {
+        for (const auto &part : parts)
+          {
+            StateArchive sub;
+            part.io(sub);
+            records.push_back({part.key, part.version, sub.data()});
+          }
+        ar &records;
+        return;
+      }
+    ar &records;
+    for (const auto &part : parts)
+      {
+        const auto record =
+          std::find_if(records.begin(), records.end(), [&](const Record &r) { return r.key == part.key; });
+        if (record == records.end())
+          throw RecordMismatch("it holds no record of the " + part.key);
+        if (record->version != part.version)
+          throw RecordMismatch("its record of the " + part.key + " is version " + std::to_string(record->version) +
+                               ", this build reads version " + std::to_string(part.version));
+        StateArchive sub(record->state);
+        part.io(sub);
+        if (!sub.exhausted())
+          throw RecordMismatch("its record of the " + part.key + " is longer than version " +
+                               std::to_string(part.version) + " of it");
+      }
   }
 
 
@@ -211,8 +278,10 @@ namespace anvil
   // nodes: 'layout' names that order and what the state holds (1, unstated:
   // element ids in p4est's tree order; 2: the scene's cell order, the fully
   // distributed mesh; 3: the run summary with every probe's figures; 6:
-  // the penalty pairs' approach; 7: Johnson-Cook's thermal factor). A checkpoint of another layout would load
-  // its state wrongly.
+  // the penalty pairs' approach; 7: Johnson-Cook's thermal factor; 8: the
+  // families and postprocessors in records keyed by name, each with its
+  // own version). A checkpoint of another layout would load its state
+  // wrongly.
   void Simulator::check_checkpoint(const std::string &dir) const
   {
     int n = -1, layout = 1;
@@ -261,6 +330,7 @@ namespace anvil
     std::vector<long>         lengths;
     std::vector<std::string>  names;
     std::string               failure;
+    int                       mismatch = 0;
     try
       {
         serialize(ar);
@@ -268,10 +338,20 @@ namespace anvil
         if (!ar.exhausted())
           failure = "longer than the state of this scene";
       }
+    catch (const RecordMismatch &e)
+      {
+        failure  = e.what();
+        mismatch = 1;
+      }
     catch (const std::exception &e)
       {
         failure = e.what();
       }
+    if (Utilities::MPI::max(mismatch, mpi_communicator) != 0)
+      throw InputError(scene_file + ": --resume: the checkpoint in '" + directory +
+                       "' was written by another version of Anvil (" +
+                       (failure.empty() ? std::string("on another rank") : failure) +
+                       "): run the scene again from its start");
     if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
       throw InputError(scene_file + ": --resume: the checkpoint does not fit this scene (" +
                        (failure.empty() ? std::string("on another rank") : failure) +

@@ -54,10 +54,11 @@ namespace anvil
 
   unsigned int SimulatorAccess::body_index(const std::string &name) const
   {
-    unsigned int b = 0;
-    while (b + 1 < simulator.bodies.size() && simulator.bodies[b].name != name)
-      ++b;
-    return b;
+    for (unsigned int b = 0; b < simulator.bodies.size(); ++b)
+      if (simulator.bodies[b].name == name)
+        return b;
+    AssertThrow(false, dealii::ExcMessage("no body is named '" + name + "' (the scene's parsing checks names)"));
+    return 0;
   }
 
   const dealii::Tensor<1, 3> &SimulatorAccess::get_gravity() const

@@ -13,14 +13,19 @@ supports: every kind of state Anvil carries), 12 ms.
   a changed scene, from a checkpoint of an earlier state layout (its
   info without the 'layout' line: the element order before the fully
   distributed mesh), or from a damaged one (its state file cut short, a
-  byte flipped, bytes appended: each file carries its length and CRC-32)
+  byte flipped, bytes appended: each file carries its length and CRC-32),
+  or holding a family's record that another version of Anvil wrote (the
+  records are keyed by name, each with its version: one of another
+  version, or one field longer, is refused by name)
   stops with one line (exit 2).
 """
 import os
 import shutil
 import signal
+import struct
 import subprocess
 import time
+import zlib
 from anvil_test import Checker, arguments
 
 args = arguments()
@@ -136,10 +141,42 @@ def flip(data):
     return data
 
 
+# Records of another version: the state file's record of one family (its
+# key, its version, its length, its bytes) changed as a build whose record
+# differs would have written it, the checksum made to match. The checkpoint
+# is refused by that family's name, never read wrongly.
+def with_trailer(state):
+    return state + b"ANVILCK1" + struct.pack("<Q", len(state)) + struct.pack("<I", zlib.crc32(state))
+
+
+def record_changed(change):
+    def apply(data):
+        state = bytes(data[:-20])
+        key = b"family 'contact'"
+        at = state.index(key) + len(key)
+        return bytearray(with_trailer(change(state, at)))
+    return apply
+
+
+def next_version(state, at):
+    version = struct.unpack_from("<I", state, at)[0]
+    return state[:at] + struct.pack("<I", version + 1) + state[at + 4:]
+
+
+def one_field_more(state, at):
+    length = struct.unpack_from("<Q", state, at + 4)[0]
+    end = at + 12 + length
+    return state[:at + 4] + struct.pack("<Q", length + 8) + state[at + 12:end] + b"\0" * 8 + state[end:]
+
+
 for label, cmd, words in (
         ("from a checkpoint cut short", damaged("cut", lambda d: d[:len(d) // 2]), ["is refused", "cut short"]),
         ("from a checkpoint with a byte flipped", damaged("flipped", flip), ["is refused", "checksum"]),
         ("from a checkpoint with bytes appended", damaged("grown", lambda d: d + b"\0" * 100), ["is refused"]),
+        ("with a family's record of another version", damaged("version", record_changed(next_version)),
+         ["family 'contact'", "version 2", "reads version 1", "another version of Anvil"]),
+        ("with a family's record one field longer", damaged("longer", record_changed(one_field_more)),
+         ["family 'contact'", "longer than version 1", "another version of Anvil"]),
         ("from an earlier state layout", command("old_layout", resume=True), ["layout 1", "run the scene again"]),
         ("on another number of processes", command("term", np=1, resume=True), ["written by 2", "-np 2"]),
         ("without a checkpoint", command("nothing", resume=True), ["no checkpoint"]),

@@ -86,6 +86,17 @@ namespace anvil::Postprocess
       (void)ar;
     }
 
+    /** The version of serialize()'s record in a checkpoint: raise it when
+        the record changes, so that a checkpoint holding the old record is
+        refused by name instead of read wrongly. */
+    virtual unsigned int state_version() const
+    {
+      return 1;
+    }
+
+    /** The name it is registered under (its checkpoint record's key). */
+    std::string plugin_name;
+
   protected:
     /** Its history files (rank 0; e.g. one per probe). */
     std::vector<HistoryFile> files;

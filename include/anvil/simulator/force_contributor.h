@@ -145,6 +145,15 @@ namespace anvil
     /** Everything the steps change, in one order for writing and reading. */
     virtual void serialize(StateArchive &ar) = 0;
 
+    /** The version of serialize()'s record in a checkpoint, which is keyed
+        by name(): raise it when the record changes, so that a checkpoint
+        holding the old record is refused by name instead of read wrongly
+        (the other families' records are unaffected). */
+    virtual unsigned int state_version() const
+    {
+      return 1;
+    }
+
   protected:
     /** The family's history files (rank 0; e.g. one per contact pair). */
     std::vector<HistoryFile> files;

@@ -33,11 +33,20 @@
 #include <fstream>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace anvil
 {
+  /** A checkpoint's record of a family or postprocessor that this build
+      reads otherwise (absent, another version, longer). */
+  struct RecordMismatch : std::runtime_error
+  {
+    explicit RecordMismatch(const std::string &what);
+  };
+
+
   /** A stage of a scene (doc/user_guide.md, "Stages"): its name and the
       entries it changes ('PATH=VALUE', as --set), applied to the scene for
       this stage and the stages after it. */
@@ -142,7 +151,7 @@ namespace anvil
         cells' cost per step (setup.cc). */
     void partition_by_cost(dealii::Triangulation<3> &serial) const;
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 7;
+    static constexpr int checkpoint_layout = 8;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
