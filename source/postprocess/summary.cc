@@ -88,6 +88,13 @@ namespace anvil::Postprocess
             out << "contact_duration_s,"
                 << (summary.contact_start < 0 ? 0. : summary.contact_end - summary.contact_start)
                 << '\n';
+            // Every pair by name, the same figures.
+            for (unsigned int p = 0; p < summary.pair_peak_force.size(); ++p)
+              out << "peak_contact_force_" << contact_pair_name(p) << "_N," << summary.pair_peak_force[p] << '\n'
+                  << "contact_duration_" << contact_pair_name(p) << "_s,"
+                  << (summary.pair_contact_start[p] < 0 ? 0. :
+                                                          summary.pair_contact_end[p] - summary.pair_contact_start[p])
+                  << '\n';
           }
         if (!boundary_conditions.empty())
           out << "peak_support_reaction_N," << summary.peak_reaction << '\n';

@@ -251,6 +251,11 @@ namespace anvil
     return simulator.contributors();
   }
 
+  const std::string &SimulatorAccess::contact_pair_name(const unsigned int p) const
+  {
+    return simulator.contact->pair_name(p);
+  }
+
   bool SimulatorAccess::has_contact() const
   {
     return !simulator.contact->empty();

@@ -36,6 +36,18 @@ namespace anvil
       const auto &f = contact_results[p].force_on_first;
       return std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
     };
+    const std::size_t n_pairs = contact_results.size();
+    summary.pair_peak_force.resize(n_pairs, 0.);
+    summary.pair_contact_start.resize(n_pairs, -1.);
+    summary.pair_contact_end.resize(n_pairs, -1.);
+    for (unsigned int p = 0; p < n_pairs; ++p)
+      if (const double force = force_of(p); force > 0)
+        {
+          summary.pair_peak_force[p] = std::max(summary.pair_peak_force[p], force);
+          if (summary.pair_contact_start[p] < 0)
+            summary.pair_contact_start[p] = t;
+          summary.pair_contact_end[p] = t;
+        }
     if (summary_subjects.pair < contact_results.size())
       if (const double force = force_of(summary_subjects.pair); force > 0)
         {

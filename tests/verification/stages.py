@@ -177,7 +177,8 @@ if c.check_true("settling block runs", code == 0, err.strip()[-300:]):
 # The floor pair carries the block's weight for ever, so a criterion that
 # follows every pair never holds (the stage runs its whole 0.5 s); one that
 # follows the lid's pair ends the stage once the block has settled, at the
-# same sag. Summary.csv reports the probe and the pair named.
+# same sag. Summary.csv reports the probe and the pair named, and every
+# pair by name.
 weight = rho * side ** 2 * H * g
 sag = rho * g * H ** 2 / (2 * E)
 floor = os.path.join(src, "tests", "verification", "block_on_floor.prm")
@@ -210,6 +211,10 @@ for name, changes in (("every_pair", ""), ("lid_pair", named)):
                      s["peak_displacement_m"] == s["peak_displacement_middle_m"] and
                      s["peak_displacement_m"] != s["peak_displacement_top_m"] and s["peak_contact_force_N"] == 0,
                      f"{s['peak_displacement_m']:.4g} m, {s['peak_contact_force_N']:.4g} N")
+        c.check_true("summary.csv's rows of every pair by name: the floor carries the weight, the lid nothing",
+                     s["peak_contact_force_floor_N"] >= weight and s["peak_contact_force_lid_N"] == 0 and
+                     s["contact_duration_lid_s"] == 0,
+                     f"floor {s['peak_contact_force_floor_N']:.4g} N, lid {s['peak_contact_force_lid_N']:.4g} N")
 for name, entry, words in (("bad_summary_probe", "Summary probe = bottom", ["Summary probe", "bottom", "top"]),
                            ("bad_end_pairs", "End contact pairs = lid, roof", ["End contact pairs", "roof"])):
     prm = write_scene(os.path.join(work, name + ".prm"), text=f"include {floor}\nsubsection Simulation\n  set {entry}\nend\n")

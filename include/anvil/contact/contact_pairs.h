@@ -83,6 +83,10 @@ namespace anvil::Contact
     {
       return pairs.size();
     }
+    const std::string &pair_name(const unsigned int p) const
+    {
+      return pairs[p]->name;
+    }
     const Algorithm &pair(const unsigned int p) const
     {
       return *pairs[p];

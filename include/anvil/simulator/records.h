@@ -125,6 +125,10 @@ namespace anvil
         the quiet period's rows, in the order of 'Probes' (summary.csv's
         peak_displacement_NAME_m, residual_displacement_NAME_m). */
     std::vector<double> probe_peak, probe_last, probe_quiet_sum;
+    /** Every contact pair's peak force and the first and last time it
+        carried force (-1: never), in the order of 'Contact pairs'
+        (summary.csv's peak_contact_force_NAME_N, contact_duration_NAME_s). */
+    std::vector<double> pair_peak_force, pair_contact_start, pair_contact_end;
 
     template <class Archive>
     void serialize(Archive &ar)
@@ -132,7 +136,7 @@ namespace anvil
       ar &peak_displacement &residual_displacement &peak_contact_force &contact_start &contact_end
         &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
           &contact_limited_steps &quiet_since &quiet_displacement_sum &quiet_rows &ended_early &probe_peak
-            &probe_last &probe_quiet_sum;
+            &probe_last &probe_quiet_sum &pair_peak_force &pair_contact_start &pair_contact_end;
     }
   };
 } // namespace anvil

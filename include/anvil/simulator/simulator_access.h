@@ -120,6 +120,8 @@ namespace anvil
     /** The families (rigid bodies, reinforcement, contact pairs). */
     const std::vector<ForceContributor *> &get_families() const;
     bool                              has_contact() const;
+    /** The name of contact pair @p p (in the order of 'Contact pairs'). */
+    const std::string                &contact_pair_name(unsigned int p) const;
     bool                              plots_requested() const;
     /** Whether the VTU fields compress their arrays ('Output compression'). */
     bool                              output_compressed() const;
