@@ -482,10 +482,7 @@ namespace anvil::Element
     const unsigned int e = cell_index.size();
     nodes.resize(std::max<std::size_t>(nodes.size(), (e / W + 1) * 8 * W));
     for (unsigned int n = 0; n < 8; ++n)
-      {
-        nodes[(e / W) * 8 * W + n * W + e % W] = node[n];
-        last_node_offset = std::max(last_node_offset, node[n]);
-      }
+      nodes[(e / W) * 8 * W + n * W + e % W] = node[n];
     cell_index.push_back(cell);
     global_id.push_back(id == static_cast<unsigned long>(-1) ? cell : id);
     energy_weight.push_back(owned ? 1. : 0.);
@@ -526,6 +523,12 @@ namespace anvil::Element
     for (auto *v : {&strength_factors, &energy_weight, &reference_volume, &jacobian_inverse_ref, &jxw_ref})
       v->shrink_to_fit();
     nodes.shrink_to_fit();
+    // The batches the gather may read a fourth value past each node of
+    // (gather_nodes()): all but those that hold the group's last node.
+    const unsigned int last = nodes.empty() ? 0 : *std::max_element(nodes.begin(), nodes.end());
+    batch_wide.assign(nodes.size() / (8 * W), 0);
+    for (std::size_t b = 0; b < batch_wide.size(); ++b)
+      batch_wide[b] = *std::max_element(&nodes[8 * W * b], &nodes[8 * W * (b + 1)]) < last;
     cell_index.shrink_to_fit();
     global_id.shrink_to_fit();
     stresses.assign(6 * n * n_qp, 0.);
@@ -589,7 +592,7 @@ namespace anvil::Element
   double ElementGroup::memory_per_element() const
   {
     const double n = std::max<std::size_t>(1, cell_index.size());
-    return (nodes.capacity() * sizeof(unsigned int) +
+    return (nodes.capacity() * sizeof(unsigned int) + batch_wide.capacity() +
             cell_index.capacity() * sizeof(unsigned int) +
             sizeof(double) *
               (reference_volume.capacity() + energy_weight.capacity() + jacobian_inverse_ref.capacity() +
@@ -984,8 +987,7 @@ namespace anvil::Element
             double       r[3][4];
             if constexpr (H == HourglassType::viscous)
               {
-                const double c = std::sqrt(M / rho);
-                k = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * c;
+                k = viscous_hourglass_coefficient(rho, volume, M);
                 for (unsigned int a = 0; a < 3; ++a)
                   for (unsigned int j = 0; j < 4; ++j)
                     r[a][j] = k * h[a][j];
@@ -1269,9 +1271,9 @@ namespace anvil::Element
     if (refresh_shape)
       {
         const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a]; });
-        shape_factor[e] = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
+        shape_factor[e] = shape_factor_of(volume, A2, max_grad2, mass_factor[e]);
       }
-    return 4. / max_grad2 * shape_factor[e] * rho_c / material.wave_modulus() * dt_bulk2;
+    return element_step2_of(max_grad2, shape_factor[e], rho_c, material.wave_modulus(), dt_bulk2);
   }
 
 
@@ -1299,16 +1301,13 @@ namespace anvil::Element
     const double rho0 = material.density(), M = material.wave_modulus();
     const double rho  = rho0 * reference_volume[e] / volume;
     const double A2   = max_face_area2([&](unsigned int n, unsigned int a) { return X[n][a]; });
-    const double shape = std::min(1., volume * volume / A2 * max_grad2 / 4.) * mass_factor[e];
     double       dt_bulk2 = 1.;
     if (bulk_viscosity())
       bulk_viscosity_pressure(0., 2. / std::sqrt(max_grad2), rho, std::sqrt(M / rho), dt_bulk2);
-    double dt2 = 4. / max_grad2 * shape * rho / M * dt_bulk2;
+    double dt2 = element_step2_of(max_grad2, shape_factor_of(volume, A2, max_grad2, mass_factor[e]), rho, M, dt_bulk2);
     if (hourglass == HourglassType::viscous)
-      {
-        const double k = 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * std::sqrt(M / rho);
-        dt2            = std::min(dt2, viscous_hourglass_step2(rho * volume, k, mass_factor[e]));
-      }
+      dt2 = std::min(dt2, viscous_hourglass_step2(rho * volume,
+                                                  viscous_hourglass_coefficient(rho, volume, M), mass_factor[e]));
     return std::sqrt(dt2);
   }
 
@@ -1412,14 +1411,8 @@ namespace anvil::Element
             for (unsigned int n = 0; n < 8; ++n)
               idx[n][l] = node(el[l], n);
         alignas(64) double xe[8][3][W], ve[8][3][W];
-        // (The batch's last node: 64 offsets, no branch.)
-        unsigned int top = 0;
-        for (unsigned int n = 0; n < 8; ++n)
-          for (unsigned int l = 0; l < W; ++l)
-            top = std::max(top, idx[n][l]);
-        const bool wide = top < last_node_offset;
-        gather_nodes(x, idx, xe, wide);
-        gather_nodes(v, idx, ve, wide);
+        gather_nodes(x, idx, xe, batch_wide[e0 / W] != 0);
+        gather_nodes(v, idx, ve, batch_wide[e0 / W] != 0);
 
         // Positions and velocities in the element's Walsh basis; the
         // Jacobians of position and velocity at the centroid.
@@ -1669,10 +1662,8 @@ namespace anvil::Element
           for (unsigned int l = 0; l < W; ++l)
             {
               const double V = 8. * detn[l];
-              shape[l]       = std::min(1., V * V / max_face_area2([&](unsigned int n, unsigned int a) {
-                                          return xe[n][a][l];
-                                        }) * g2[l] / 4.) *
-                         mass_factor[el[l]];
+              const double A2 = max_face_area2([&](unsigned int n, unsigned int a) { return xe[n][a][l]; });
+              shape[l]        = shape_factor_of(V, A2, g2[l], mass_factor[el[l]]);
               if (live[l])
                 shape_factor[el[l]] = shape[l];
             }

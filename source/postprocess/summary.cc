@@ -60,41 +60,37 @@ namespace anvil::Postprocess
         out << std::setprecision(10) << "quantity,value\n";
         out << "end_time_s," << get_time() << '\n';
         out << "ended_by_criterion," << (summary.ended_early ? 1 : 0) << '\n';
+        // The summary probe's and pair's figures first, then every probe's
+        // and pair's by name (a run without a history row yet: zeros).
+        const auto &subjects = get_summary_subjects();
+        const auto  probe_residual = [&](const unsigned int p) {
+          // When the end criterion ended the run, the mean over its quiet
+          // period (the member still rings about its residual shape); else
+          // the last value.
+          return summary.ended_early && summary.quiet_rows > 0 ? summary.probe_quiet_sum[p] / summary.quiet_rows :
+                                                                  summary.probe_last[p];
+        };
+        const auto pair_duration = [&](const unsigned int p) {
+          return summary.pair_contact_start[p] < 0 ? 0. : summary.pair_contact_end[p] - summary.pair_contact_start[p];
+        };
         if (!get_probes().empty())
           {
-            out << "peak_displacement_m," << summary.peak_displacement << '\n';
-            // Residual: when the end criterion ended the run, the mean over
-            // its quiet period (the member still rings about its residual
-            // shape); else the last value.
-            out << "residual_displacement_m,"
-                << (summary.ended_early && summary.quiet_rows > 0 ?
-                      summary.quiet_displacement_sum / summary.quiet_rows :
-                      summary.residual_displacement)
-                << '\n';
-            // Every probe by name, the same figures (the first probe's
-            // repeat the two rows above).
+            const bool known = subjects.probe < summary.probe_peak.size();
+            out << "peak_displacement_m," << (known ? summary.probe_peak[subjects.probe] : 0.) << '\n'
+                << "residual_displacement_m," << (known ? probe_residual(subjects.probe) : 0.) << '\n';
             const auto &probes = get_probes();
             for (unsigned int p = 0; p < probes.size() && p < summary.probe_peak.size(); ++p)
               out << "peak_displacement_" << probes[p].name << "_m," << summary.probe_peak[p] << '\n'
-                  << "residual_displacement_" << probes[p].name << "_m,"
-                  << (summary.ended_early && summary.quiet_rows > 0 ?
-                        summary.probe_quiet_sum[p] / summary.quiet_rows :
-                        summary.probe_last[p])
-                  << '\n';
+                  << "residual_displacement_" << probes[p].name << "_m," << probe_residual(p) << '\n';
           }
         if (has_contact())
           {
-            out << "peak_contact_force_N," << summary.peak_contact_force << '\n';
-            out << "contact_duration_s,"
-                << (summary.contact_start < 0 ? 0. : summary.contact_end - summary.contact_start)
-                << '\n';
-            // Every pair by name, the same figures.
+            const bool known = subjects.pair < summary.pair_peak_force.size();
+            out << "peak_contact_force_N," << (known ? summary.pair_peak_force[subjects.pair] : 0.) << '\n'
+                << "contact_duration_s," << (known ? pair_duration(subjects.pair) : 0.) << '\n';
             for (unsigned int p = 0; p < summary.pair_peak_force.size(); ++p)
               out << "peak_contact_force_" << contact_pair_name(p) << "_N," << summary.pair_peak_force[p] << '\n'
-                  << "contact_duration_" << contact_pair_name(p) << "_s,"
-                  << (summary.pair_contact_start[p] < 0 ? 0. :
-                                                          summary.pair_contact_end[p] - summary.pair_contact_start[p])
-                  << '\n';
+                  << "contact_duration_" << contact_pair_name(p) << "_s," << pair_duration(p) << '\n';
           }
         if (!boundary_conditions.empty())
           out << "peak_support_reaction_N," << summary.peak_reaction << '\n';

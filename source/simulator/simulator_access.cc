@@ -147,6 +147,11 @@ namespace anvil
     return simulator.scene_name;
   }
 
+  const SummarySubjects &SimulatorAccess::get_summary_subjects() const
+  {
+    return simulator.summary_subjects;
+  }
+
   RunSummary &SimulatorAccess::get_summary() const
   {
     return simulator.summary;

@@ -48,14 +48,6 @@ namespace anvil
             summary.pair_contact_start[p] = t;
           summary.pair_contact_end[p] = t;
         }
-    if (summary_subjects.pair < contact_results.size())
-      if (const double force = force_of(summary_subjects.pair); force > 0)
-        {
-          summary.peak_contact_force = std::max(summary.peak_contact_force, force);
-          if (summary.contact_start < 0)
-            summary.contact_start = t;
-          summary.contact_end = t;
-        }
 
     const auto &end = end_criterion;
     if (!end.asked())
@@ -76,9 +68,8 @@ namespace anvil
       (end.kinetic_internal_ratio <= 0 || deformable_kinetic < end.kinetic_internal_ratio * energies.internal);
     if (!quiet)
       {
-        summary.quiet_since            = -1;
-        summary.quiet_displacement_sum = 0;
-        summary.quiet_rows             = 0;
+        summary.quiet_since = -1;
+        summary.quiet_rows  = 0;
         std::fill(summary.probe_quiet_sum.begin(), summary.probe_quiet_sum.end(), 0.);
         return false;
       }
@@ -93,8 +84,7 @@ namespace anvil
   }
 
 
-  // At each history row, on rank 0: every probe's displacement, and the
-  // summary probe's as summary.csv's displacement.
+  // At each history row, on rank 0: every probe's displacement.
   void Simulator::record_probe_summary(const std::vector<double> &probe_values)
   {
     if (probes.empty())
@@ -112,14 +102,8 @@ namespace anvil
         if (summary.quiet_since >= 0)
           summary.probe_quiet_sum[p] += u;
       }
-    const unsigned int p          = summary_subjects.probe;
-    summary.peak_displacement     = summary.probe_peak[p];
-    summary.residual_displacement = summary.probe_last[p];
     if (summary.quiet_since >= 0)
-      {
-        summary.quiet_displacement_sum = summary.probe_quiet_sum[p];
-        ++summary.quiet_rows;
-      }
+      ++summary.quiet_rows;
   }
 
 

@@ -192,6 +192,29 @@ namespace anvil::Element
       const double dt = element_mass / (32. * k);
       return dt * dt * node_mass_factor;
     }
+    /** The viscous damper's coefficient Q rho V^(2/3) c / 4 (seed Eq.
+        (44)), c = sqrt(M / rho), as the reference loop computes it. */
+    double viscous_hourglass_coefficient(const double rho, const double volume, const double M) const
+    {
+      const double c = std::sqrt(M / rho);
+      return 0.25 * hourglass_coefficient * rho * std::cbrt(volume * volume) * c;
+    }
+    /** An element's distortion factor min(1, (V / A_max)^2 / (2 / max
+        |grad xi|)^2) times its nodes' mass factor: (V / A_max)^2 is the
+        squared height of a parallelepiped, 4 / @p grad2 that of the
+        characteristic length. */
+    static double shape_factor_of(const double volume, const double A2, const double grad2,
+                                  const double node_mass_factor)
+    {
+      return std::min(1., volume * volume / A2 * grad2 / 4.) * node_mass_factor;
+    }
+    /** The squared stable step (2 / max |grad xi|)^2 shape rho / M of seed
+        Eq. (23), times the bulk viscosity's factor. */
+    static double element_step2_of(const double grad2, const double shape, const double rho, const double M,
+                                   const double dt_bulk2)
+    {
+      return 4. / grad2 * shape * rho / M * dt_bulk2;
+    }
 
     /**
      * The explicit element loop: from current positions @p x and
@@ -455,9 +478,10 @@ namespace anvil::Element
         node-major within a batch (node(e, n)), so that the batched loop
         reads a batch's node n as one vector. */
     std::vector<unsigned int> nodes;
-    /** The largest of them: a node below it has the four values the
-        batched gather reads (its three and one more) in the nodal vector. */
-    unsigned int last_node_offset = 0;
+    /** Per batch: whether every node of it lies below the group's last
+        node, so that the nodal vector holds the four values the batched
+        gather reads from each (its three and one more). */
+    std::vector<unsigned char> batch_wide;
     static constexpr unsigned int W = MaterialModel::Interface::batch_size;
     unsigned int node(const unsigned int e, const unsigned int n) const
     {

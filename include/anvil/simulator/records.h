@@ -102,10 +102,6 @@ namespace anvil
       rank 0 at each history row. */
   struct RunSummary
   {
-    double peak_displacement     = 0;
-    double residual_displacement = 0;
-    double peak_contact_force    = 0;
-    double contact_start = -1, contact_end = -1;
     double initial_kinetic       = 0;
     double max_hourglass_ratio   = 0;
     double max_balance_error     = 0;
@@ -115,10 +111,9 @@ namespace anvil
         set. */
     double       element_steps         = 0;
     unsigned int contact_limited_steps = 0;
-    /** Start of the current quiet period (end criterion), -1: none; the
-        summary probe's displacement summed over its history rows. */
+    /** Start of the current quiet period (end criterion), -1: none, and
+        the history rows in it. */
     double       quiet_since = -1;
-    double       quiet_displacement_sum = 0;
     unsigned int quiet_rows = 0;
     bool   ended_early = false;
     /** Every probe's peak and last displacement magnitude and its sum over
@@ -133,10 +128,9 @@ namespace anvil
     template <class Archive>
     void serialize(Archive &ar)
     {
-      ar &peak_displacement &residual_displacement &peak_contact_force &contact_start &contact_end
-        &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
-          &contact_limited_steps &quiet_since &quiet_displacement_sum &quiet_rows &ended_early &probe_peak
-            &probe_last &probe_quiet_sum &pair_peak_force &pair_contact_start &pair_contact_end;
+      ar &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
+        &contact_limited_steps &quiet_since &quiet_rows &ended_early &probe_peak &probe_last &probe_quiet_sum
+          &pair_peak_force &pair_contact_start &pair_contact_end;
     }
   };
 } // namespace anvil

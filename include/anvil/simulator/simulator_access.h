@@ -26,6 +26,7 @@ namespace anvil
   class Simulator;
   struct Energies;
   struct RunSummary;
+  struct SummarySubjects;
   struct Probe;
   class Body;
   class BoundaryCondition;
@@ -85,6 +86,8 @@ namespace anvil
     // The run's figures, outputs and the families
     const std::string &get_scene_name() const;
     RunSummary        &get_summary() const;
+    /** The probe and the contact pair summary.csv reports first. */
+    const SummarySubjects &get_summary_subjects() const;
     const std::vector<Probe> &get_probes() const;
     /** On rank 0, at each history row: the first probe's displacement for
         the summary and the end criterion. */
