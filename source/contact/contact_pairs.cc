@@ -36,7 +36,6 @@ namespace anvil::Contact
     const auto        &bodies           = get_bodies();
     const auto        &dof_handler      = get_dof_handler();
     const VectorType  &position         = get_position();
-    const VectorType  &mass             = get_mass();
     const MPI_Comm     mpi_communicator = get_mpi_communicator();
     const std::string &scene_file       = get_scene_file();
     const unsigned int n_pairs          = pairs.size();
@@ -89,7 +88,7 @@ namespace anvil::Contact
                         }
                       local.push_back(K);
                       local.push_back(V);
-                      local.push_back(cell->id().get_coarse_cell_id());
+                      local.push_back(element_id(cell->active_cell_index()));
                     }
             for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
               for (std::size_t i = 0; i < part.size(); i += 19)
@@ -133,9 +132,20 @@ namespace anvil::Contact
         // The pair's node masses (normal damping, the springs' frequency in
         // the stable step, which each evaluation updates).
         std::vector<double> m(dofs.size(), 0.);
+        int                 hanging = 0;
         for (const auto &[i, local] : owned_index[p])
-          m[i] = mass.local_element(local);
+          {
+            m[i] = node_mass(local);
+            hanging |= is_hanging(local) ? 1 : 0;
+          }
         Utilities::MPI::sum(m, mpi_communicator, m);
+        // A kinematic pair corrects the motion of its nodes one by one; a
+        // hanging node's motion is its masters'.
+        if (pairs[p]->kinematic() && Utilities::MPI::max(hanging, mpi_communicator) != 0)
+          throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
+                           "': the surface has hanging nodes of a 'Refinement region', which kinematic "
+                           "contact does not take yet: set 'Algorithm = penalty' there, or keep the "
+                           "region's boundary off the contact surface");
         pairs[p]->set_node_masses(m);
         positions[p].resize(3 * dofs.size());
         if (pairs[p]->needs_velocities())

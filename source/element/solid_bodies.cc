@@ -84,7 +84,7 @@ namespace anvil::Element
             X,
             cell->active_cell_index(),
             cell->is_locally_owned(),
-            cell->id().get_coarse_cell_id(),
+            element_id(cell->active_cell_index()),
             body.strength_factor(cell->center()));
         }
     for (auto &g : element_groups)

@@ -211,6 +211,31 @@ namespace anvil
                       Patterns::Anything(),
                       "Upper corner of the full integration box. Units: m.");
     prm.leave_subsection();
+    prm.enter_subsection("Refinement region");
+    prm.declare_entry("Lower corner",
+                      "",
+                      Patterns::Anything(),
+                      "Lower corner of a box (reference coordinates) whose "
+                      "elements (by their centroid) are halved in every "
+                      "direction 'Levels' times, once the body's mesh is built: "
+                      "finer elements where the scene needs them (under an "
+                      "impactor), the body's own size elsewhere. Where a refined "
+                      "element meets a coarser one, the nodes in the middle of "
+                      "the coarse face or edge hang: they follow the coarse "
+                      "face (doc/adaptivity.md). Empty: none. Units: m.");
+    prm.declare_entry("Upper corner",
+                      "",
+                      Patterns::Anything(),
+                      "Upper corner of the refinement box. Units: m.");
+    prm.declare_entry("Levels",
+                      "1",
+                      Patterns::Integer(0, 4),
+                      "How many times the elements in the box are halved "
+                      "(each level refines the elements of the last whose "
+                      "centroid is in the box; neighbours differ by one level "
+                      "at most, so a ring of elements outside the box may be "
+                      "refined too). Units: none.");
+    prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
   }
 
@@ -256,6 +281,12 @@ namespace anvil
     return has_full_region && inside(centroid, full_region_lower, full_region_upper) ?
              Element::Integration::full :
              integration;
+  }
+
+
+  bool Body::in_refinement_region(const dealii::Point<3> &centroid) const
+  {
+    return refinement_levels > 0 && inside(centroid, refinement_lower, refinement_upper);
   }
 
 
@@ -392,6 +423,14 @@ namespace anvil
                                 full_region_lower,
                                 full_region_upper);
     prm.leave_subsection();
+    prm.enter_subsection("Refinement region");
+    refinement_levels = 0;
+    if (parse_box(prm, "subsection 'Body " + name + "/Refinement region': ", refinement_lower, refinement_upper))
+      refinement_levels = prm.get_integer("Levels");
+    prm.leave_subsection();
+    if (refinement_levels > 0 && material->is_rigid())
+      throw InputError("subsection 'Body " + name + "/Refinement region': a rigid body moves as one and needs no "
+                       "finer elements (allowed on deformable bodies)");
     rigid.parse_parameters(prm, name);
     if (!material->is_rigid() && rigid.shape.type != RigidBody::Shape::Type::mesh)
       throw InputError("subsection 'Body " + name + "/Rigid body': a 'Contact shape' "

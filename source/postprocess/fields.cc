@@ -81,7 +81,7 @@ namespace anvil::Postprocess
         if (cell->is_locally_owned())
           {
             slot[cell->active_cell_index()] = element_id.size();
-            element_id.push_back(cell->id().get_coarse_cell_id());
+            element_id.push_back(SimulatorAccess::element_id(cell->active_cell_index()));
             for (const unsigned int v : vtk_order)
               {
                 const unsigned int vertex = cell->vertex_index(v);
@@ -154,6 +154,11 @@ namespace anvil::Postprocess
         field("eroded", Type::float32);
       const std::size_t rank = piece.cell_data.size();
       field("mpi_rank", Type::int64);
+      // The refinement level of each element, where a body is refined.
+      const bool        refined = triangulation.n_global_levels() > 1;
+      const std::size_t level   = piece.cell_data.size();
+      if (refined)
+        field("refinement_level", Type::int64);
       const auto cell_value = [&](const std::size_t array, const unsigned int c) -> float & {
         return piece.cell_data[array].floats[slot[c]];
       };
@@ -210,6 +215,8 @@ namespace anvil::Postprocess
               cell_value(strain[k], c) = E[ij[k][0]][ij[k][1]];
             piece.cell_data[body_id].values[slot[c]] = cell->material_id();
             piece.cell_data[rank].values[slot[c]]    = my_rank;
+            if (refined)
+              piece.cell_data[level].values[slot[c]] = cell->level();
           }
 
       // Each process its piece, rank 0 the record naming them.

@@ -167,7 +167,7 @@ namespace anvil::Rebar
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned() && cell->material_id() == host)
             {
-              const unsigned long id = cell->id().get_coarse_cell_id();
+              const unsigned long id = element_id(cell->active_cell_index());
               std::array<Point<3>, 8> X;
               BPoint lo(1e300, 1e300, 1e300), hi(-1e300, -1e300, -1e300);
               for (unsigned int v = 0; v < 8; ++v)
@@ -234,7 +234,7 @@ namespace anvil::Rebar
               std::array<long, 8> dofs;
               for (unsigned int v = 0; v < 8; ++v)
                 dofs[v] = position.get_partitioner()->global_to_local(cell->vertex_dof_index(v, 0));
-              local[cell->id().get_coarse_cell_id()] = {dofs, cell->is_locally_owned()};
+              local[element_id(cell->active_cell_index())] = {dofs, cell->is_locally_owned()};
             }
         T.host_dofs.assign(T.X.size(), std::array<long, 8>{{-1, -1, -1, -1, -1, -1, -1, -1}});
         T.host_owned.assign(T.X.size(), false);

@@ -8,6 +8,7 @@
 #include <anvil/deck/deck.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
+#include <anvil/utilities/step_section.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/mapping_q1.h>
@@ -16,11 +17,13 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 
 #include <filesystem>
 #include <unistd.h>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -140,7 +143,11 @@ namespace anvil
     // description of each process's cells take; then each process keeps its
     // own cells and the ghost layer around them, nothing else.
     {
-      Triangulation<3> serial;
+      // (Neighbours across a face, an edge or a vertex differ by one
+      // level at most: each hanging node then has masters that are not
+      // hanging themselves, all in the ghost layer of the process that
+      // owns it.)
+      Triangulation<3> serial(Triangulation<3>::limit_level_difference_at_vertices);
       try
         {
           serial.create_triangulation(vertices, cells, boundary);
@@ -152,16 +159,22 @@ namespace anvil
       std::vector<Point<3>>().swap(vertices);
       std::vector<CellData<3>>().swap(cells);
       boundary = SubCellData();
+      refine_regions(serial);
       partition_by_cost(serial);
       const auto description =
         TriangulationDescription::Utilities::create_description_from_triangulation(serial, mpi_communicator);
       triangulation.create_triangulation(description);
       // The process numbers the vertices it holds from 0; each keeps the
-      // scene's index, found through its cell's (output's node ids).
+      // scene's index, found through its cell's (output's node ids). An
+      // element's id is its index among the scene's active cells (its
+      // coarse cell's where nothing is refined).
       scene_vertex.assign(triangulation.n_vertices(), numbers::invalid_unsigned_int);
+      element_id.assign(triangulation.n_active_cells(), numbers::invalid_unsigned_int);
       for (const auto &cell : triangulation.active_cell_iterators())
         {
-          const Triangulation<3>::cell_iterator whole(&serial, 0, cell->id().get_coarse_cell_id());
+          const auto whole = serial.create_cell_iterator(cell->id());
+          if (!cell->is_artificial())
+            element_id[cell->active_cell_index()] = whole->active_cell_index();
           for (const unsigned int v : cell->vertex_indices())
             {
               AssertThrow(cell->vertex(v) == whole->vertex(v), ExcInternalError());
@@ -169,6 +182,38 @@ namespace anvil
             }
         }
     }
+  }
+
+
+  // @sect3{Local refinement}
+  //
+  // Each body's 'Refinement region': its elements are halved once per
+  // level, by their reference centroid, the scene's mesh being the coarse
+  // mesh of a forest (deal.II's refinement, with one level at most between
+  // neighbours). The refined mesh is then distributed as any other: each
+  // process holds its cells and their ghost layer, with the hanging nodes'
+  // constraints (setup_system).
+  void Simulator::refine_regions(Triangulation<3> &serial) const
+  {
+    unsigned int levels = 0;
+    for (const auto &body : bodies)
+      levels = std::max(levels, body.local_refinement_levels());
+    for (unsigned int level = 0; level < levels; ++level)
+      {
+        bool any = false;
+        for (const auto &cell : serial.active_cell_iterators())
+          {
+            const Body &body = bodies[cell->material_id()];
+            if (level < body.local_refinement_levels() && body.in_refinement_region(cell->center()))
+              {
+                cell->set_refine_flag();
+                any = true;
+              }
+          }
+        if (!any)
+          break;
+        serial.execute_coarsening_and_refinement();
+      }
   }
 
 
@@ -242,6 +287,27 @@ namespace anvil
             }
     position = reference_position;
 
+    // The hanging nodes of local refinement: deal.II's constraints of the
+    // dofs this process holds, summed onto the masters in the order of the
+    // nodes' scene index.
+    hanging = HangingNodes();
+    if (triangulation.n_global_levels() > 1)
+      {
+        AffineConstraints<double> constraints(relevant);
+        DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+        constraints.close();
+        const auto               &partitioner = *position.get_partitioner();
+        std::vector<unsigned long> key(partitioner.locally_owned_size() + partitioner.n_ghost_indices(),
+                                       std::numeric_limits<unsigned long>::max());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (unsigned int v = 0; v < 8; ++v)
+              for (unsigned int c = 0; c < 3; ++c)
+                key[partitioner.global_to_local(cell->vertex_dof_index(v, c))] =
+                  3ul * scene_vertex[cell->vertex_index(v)] + c;
+        hanging.reinit(constraints, partitioner, key);
+      }
+
     dof_body.assign(position.locally_owned_size(), 0);
     dof_component.assign(position.locally_owned_size(), 0);
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -295,8 +361,38 @@ namespace anvil
     mass = 0;
     for (auto *family : contributors())
       family->add_mass(mass);
+    // A hanging node's mass goes to its masters (HangingNodes): the
+    // owners' complete masses first.
+    if (!hanging.empty())
+      {
+        mass.update_ghost_values();
+        hanging_mass.assign(mass.begin(), mass.begin() + mass.locally_owned_size());
+        hanging.condense(mass.begin());
+        mass.update_ghost_values();
+      }
     for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
-      AssertThrow(mass.local_element(i) > 0, ExcMessage("a node has no mass"));
+      AssertThrow(mass.local_element(i) > 0 || hanging.is_hanging(i), ExcMessage("a node has no mass"));
+    // The dofs the central difference leaves alone: the rigid bodies'
+    // (the family moves them) and the hanging ones (they follow).
+    moved_dof = rigid_dof;
+    if (!hanging.empty())
+      {
+        moved_dof.resize(mass.locally_owned_size(), 0);
+        for (unsigned int i = 0; i < mass.locally_owned_size(); ++i)
+          if (hanging.is_hanging(i))
+            moved_dof[i] = 1;
+      }
+  }
+
+
+  void Simulator::condense_forces()
+  {
+    if (hanging.empty())
+      return;
+    StepSection t(*timer, print_wall_times, "time integration");
+    // Each hanging node's force is complete on its owner alone.
+    force.update_ghost_values();
+    hanging.condense(force.begin());
   }
 
 
@@ -372,6 +468,10 @@ namespace anvil
               {
                 const auto d = cell->vertex_dof_index(v, 0);
                 if (!dof_handler.locally_owned_dofs().is_element(d))
+                  continue;
+                // (A hanging node's motion is its neighbours': the probe
+                // follows the nearest node that is not hanging.)
+                if (hanging.is_hanging(position.get_partitioner()->global_to_local(d)))
                   continue;
                 // Ties broken by position so that every partition picks
                 // the same node.

@@ -76,6 +76,21 @@ namespace anvil
     return simulator.dof_handler;
   }
 
+  unsigned int SimulatorAccess::element_id(const unsigned int c) const
+  {
+    return simulator.element_id[c];
+  }
+
+  bool SimulatorAccess::is_hanging(const unsigned int i) const
+  {
+    return simulator.hanging.is_hanging(i);
+  }
+
+  double SimulatorAccess::node_mass(const unsigned int i) const
+  {
+    return simulator.hanging.is_hanging(i) ? simulator.hanging_mass[i] : simulator.mass.local_element(i);
+  }
+
   unsigned int SimulatorAccess::scene_vertex_index(const unsigned int v) const
   {
     return simulator.scene_vertex[v];

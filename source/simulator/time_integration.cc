@@ -159,7 +159,7 @@ namespace anvil
             for (const unsigned int i : constrained_dofs)
               damped_dof[i] = 0;
             for (unsigned int i = 0; i < n; ++i)
-              if (!rigid_dof.empty() && rigid_dof[i])
+              if (!moved_dof.empty() && moved_dof[i])
                 damped_dof[i] = 2;
           }
         double absorbed = 0;
@@ -181,7 +181,7 @@ namespace anvil
             }
         energies.damping += Utilities::MPI::sum(absorbed, mpi_communicator);
       }
-    else if (rigid_dof.empty())
+    else if (moved_dof.empty())
       for (unsigned int i = 0; i < n; ++i)
         {
           const double v_old = v[i];
@@ -192,7 +192,7 @@ namespace anvil
         }
     else
       for (unsigned int i = 0; i < n; ++i)
-        if (!rigid_dof[i])
+        if (!moved_dof[i])
           {
             const double v_old = v[i];
             const double dv    = dt_avg * f[i] / m[i];
@@ -224,6 +224,12 @@ namespace anvil
     for (auto &family : families)
       if (!family->empty())
         family->update_velocity(dt_previous, dt, own);
+    // The hanging nodes follow their masters' new velocities.
+    if (!hanging.empty())
+      {
+        velocity.update_ghost_values();
+        hanging.distribute(v, n);
+      }
     energies.kinetic = 0.5 * sums[0] + own.kinetic;
     energies.external_work += sums[1] + own.work;
     // The identity at time n holds with the step-change terms of the steps
@@ -240,8 +246,13 @@ namespace anvil
     const unsigned int n = position.locally_owned_size();
     double            *x = position.begin();
     const double      *v = velocity.begin();
+    // (A hanging node's position: its masters' new ones, weighed.)
+    if (!hanging.empty())
+      hanging.advance(x, v, dt, n, hanging_position);
     for (unsigned int i = 0; i < n; ++i)
       x[i] += dt * v[i];
+    if (!hanging.empty())
+      hanging.assign(x, n, hanging_position);
     for (auto &family : families)
       if (!family->empty())
         family->update_position(dt);
@@ -512,6 +523,7 @@ namespace anvil
     zero_forces();
     critical_dt = compute_internal_forces(0.);
     apply_contact(0.);
+    condense_forces();
     const double dt_stable = stable_time_step();
     double       dt        = time_step_factor * dt_stable;
     if (max_dt_constant > 0)
@@ -534,6 +546,7 @@ namespace anvil
         zero_forces();
         compute_internal_forces(dt);
         apply_contact(dt);
+        condense_forces();
       }
     const double wall = Utilities::MPI::max(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mpi_communicator);
@@ -654,6 +667,7 @@ namespace anvil
         zero_forces();
         critical_dt = compute_internal_forces(0.);
         apply_contact(0.);
+        condense_forces();
         const double contact_frequency_squared = contact->frequency_squared();
         if (contact_frequency_squared > 0)
           {
@@ -807,6 +821,7 @@ namespace anvil
         zero_forces();
         critical_dt = compute_internal_forces(dt_previous);
         apply_contact(dt_previous);
+        condense_forces();
 
         if (output_interval > 0 && time >= next_output - eps && time < end_time - eps)
           {

@@ -91,6 +91,17 @@ namespace anvil
       return has_full_region && integration == Element::Integration::one_point;
     }
 
+    /** Local refinement: the levels by which the elements whose reference
+        centroid lies in the 'Refinement region' are halved (0: none). */
+    unsigned int local_refinement_levels() const
+    {
+      return refinement_levels;
+    }
+
+    /** Whether an element with reference centroid @p centroid lies in the
+        refinement region. */
+    bool in_refinement_region(const dealii::Point<3> &centroid) const;
+
   private:
     void create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const;
 
@@ -112,5 +123,7 @@ namespace anvil
     double               imperfection_factor = 1.;
     bool                 has_full_region     = false;
     dealii::Point<3>     full_region_lower, full_region_upper;
+    unsigned int         refinement_levels = 0;
+    dealii::Point<3>     refinement_lower, refinement_upper;
   };
 } // namespace anvil

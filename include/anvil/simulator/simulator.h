@@ -10,6 +10,7 @@
 #include <anvil/element/element_group.h>
 #include <anvil/element/solid_bodies.h>
 #include <anvil/mesh/body.h>
+#include <anvil/mesh/hanging_nodes.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/rebar/rebar.h>
 #include <anvil/rigid_body/rigid_bodies.h>
@@ -150,6 +151,11 @@ namespace anvil
     /** The owner of each cell of the scene's whole mesh @p serial, by the
         cells' cost per step (setup.cc). */
     void partition_by_cost(dealii::Triangulation<3> &serial) const;
+    /** Refine each body's 'Refinement region' in @p serial. */
+    void refine_regions(dealii::Triangulation<3> &serial) const;
+    /** After every force of the step: the hanging nodes' forces go to
+        their masters (nothing without local refinement). */
+    void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
     static constexpr int checkpoint_layout = 8;
     /** The weight of a fully integrated element against 1000 for a
@@ -339,6 +345,18 @@ namespace anvil
     dealii::parallel::fullydistributed::Triangulation<3> triangulation;
     /** The scene's index of each vertex the process holds (make_grid). */
     std::vector<unsigned int> scene_vertex;
+    /** Each active cell's element id (by its local active cell index),
+        the same on any number of processes. */
+    std::vector<unsigned int> element_id;
+    /** The hanging nodes of local refinement (empty without). */
+    HangingNodes        hanging;
+    std::vector<double> hanging_position;
+    /** The hanging nodes' own lumped masses, before condensation (their
+        contact springs' frequency and damping). */
+    std::vector<double> hanging_mass;
+    /** The owned dofs the central difference leaves to others: the rigid
+        bodies' and the hanging ones (empty: none). */
+    std::vector<unsigned char> moved_dof;
     dealii::FESystem<3>                             fe;
     dealii::DoFHandler<3>                           dof_handler;
     /** The solid bodies: the element groups (a family, evaluated first). */

@@ -65,6 +65,17 @@ namespace anvil
         numbers the vertices a process holds from 0): the same node on any
         number of processes. */
     unsigned int scene_vertex_index(unsigned int v) const;
+    /** The element id of the process's (owned or ghost) cell with local
+        active cell index @p c: the same element on any number of
+        processes. */
+    unsigned int element_id(unsigned int c) const;
+    /** Whether the owned or ghost dof with local index @p i hangs (follows
+        the coarse face or edge of a refinement interface). */
+    bool         is_hanging(unsigned int i) const;
+    /** The lumped mass of the owned dof @p i as a contact spring sees it:
+        the node's own, also where it hangs (the update gives a hanging
+        node's mass to its masters). */
+    double       node_mass(unsigned int i) const;
     const VectorType &get_reference_position() const;
     const VectorType &get_position() const;
     const VectorType &get_velocity() const;
