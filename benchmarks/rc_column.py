@@ -22,7 +22,16 @@ Whole scene (--whole): the production scene as it ships (its end
 criterion ends it once the impact is over), on 1 and 2 processes: end
 time, steps, wall time, sections.
 
-Usage: python3 benchmarks/rc_column.py ANVIL [END_TIME_S] [--mesh-study | --whole]
+Local refinement (--adaptive): the bond-slip column to the end criterion on
+2 processes, uniform at 10 mm (the production scene), uniform at 20 mm, and
+at 20 mm halved to 10 mm in the struck part of the member (0.3 m < z <
+0.7 m, where the concrete cracks and crushes; bars in 10 mm trusses in
+all three); prints each one's peak and residual displacement of the impact
+point and the far face, peak force, elements and wall time, and the
+refined mesh's differences from the uniform 10 mm one and its share of that
+one's wall time.
+
+Usage: python3 benchmarks/rc_column.py ANVIL [END_TIME_S] [--mesh-study | --whole | --adaptive]
 (default end time 0.005 s). Figures, never asserts: timings on shared
 machines are noisy; compare the ratios within one run.
 """
@@ -87,7 +96,7 @@ end
               f"{shares(sections)}", flush=True)
     print(f"  two processes: speed-up {walls[1] / walls[2]:.2f}, parallel efficiency "
           f"{100 * walls[1] / (2 * walls[2]):.0f} %")
-elif "--mesh-study" not in sys.argv:
+elif "--mesh-study" not in sys.argv and "--adaptive" not in sys.argv:
     print(f"rc_column: production scene (10 mm) to {1e3 * end_time:g} ms")
     for np in (1, 2):
         s, sections, _ = run(f"cost_np{np}", np, f"""
@@ -127,6 +136,53 @@ end
         print("  memory held (np = 1, summary.csv), bytes per element: " +
               ", ".join(f"{name} {accounted[key] / elements:.0f}" for name, key in parts) +
               f"; together {held / elements:.0f}, the rest of the marginal {marginal - held / elements:.0f}")
+elif "--adaptive" in sys.argv:
+    print("rc_column: local refinement against the uniform meshes, bond-slip column to the end criterion, 2 processes")
+    common = """
+subsection Simulation
+  set Output interval = 0
+  set Plots = false
+end
+subsection Rebar longitudinal
+  set Element length = 0.01
+end
+subsection Rebar stirrups
+  set Element length = 0.01
+end
+"""
+    coarse = """
+subsection Body column
+  subsection Mesh
+    set Subdivisions = 6, 6, 75
+  end
+end
+"""
+    region = """
+subsection Body column
+  subsection Refinement region
+    set Lower corner = -1, -1, 0.3
+    set Upper corner = 1, 1, 0.7
+    set Levels       = 1
+  end
+end
+"""
+    rows = {}
+    for name, text in (("uniform 10 mm", common), ("uniform 20 mm", common + coarse),
+                       ("20 mm, 10 mm in 0.3-0.7 m", common + coarse + region)):
+        s, sections, out = run(name.replace(" ", "_").replace(",", "").replace(".", ""), 2, text)
+        with open(os.path.join(out, "probe_back_face.csv")) as f:
+            back = [float(r["ux"]) for r in csv.DictReader(f)]
+        rows[name] = row = {"peak": s["peak_displacement_m"], "residual": s["residual_displacement_m"],
+                            "far face": -min(back), "force": s["peak_contact_force_N"],
+                            "wall": s["wall_time_s"], "elements": s["elements"], "steps": s["steps"]}
+        print(f"  {name}: {int(row['elements'])} elements, {int(row['steps'])} steps, {row['wall']:.1f} s; impact "
+              f"point peak {1e3 * row['peak']:.2f} mm, residual {1e3 * row['residual']:.2f} mm; far face peak "
+              f"{1e3 * row['far face']:.2f} mm; peak force {1e-3 * row['force']:.1f} kN; "
+              f"{shares(sections)}", flush=True)
+    fine, local = rows["uniform 10 mm"], rows["20 mm, 10 mm in 0.3-0.7 m"]
+    print("  refined against uniform 10 mm: " +
+          ", ".join(f"{k} {100 * (local[k] / fine[k] - 1):+.1f} %" for k in ("peak", "residual", "far face", "force")) +
+          f"; elements {local['elements'] / fine['elements']:.2f}, wall time {local['wall'] / fine['wall']:.2f}")
 else:
     print("rc_column: mesh study, bond-slip column to the end criterion")
     previous = None
