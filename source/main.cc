@@ -154,6 +154,11 @@ int main(int argc, char **argv)
                                              cl.print_parameters || cl.driver || cl.translate);
   if (running)
     anvil::install_stop_handler();
+  // Started without mpirun, Open MPI's singleton would first start its
+  // daemon (0.2-0.3 s of each '--check' and each small run) for what Anvil
+  // never asks of it (spawning processes). A user's own setting stands.
+  if (!std::getenv("OMPI_COMM_WORLD_SIZE") && !std::getenv("PMIX_RANK"))
+    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   // Open MPI's start installs handlers of its own: ours again.
   if (running)
