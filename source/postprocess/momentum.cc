@@ -19,7 +19,8 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    // sum m v over the owned dofs at time n, v^{n+1/2} - dt/2 a^n; the
+    // sum m v over the owned dofs at time n, v^{n+1/2} - dt/2 a^n (a held
+    // dof's prescribed velocity: its reaction is part of a^n); the
     // families add what they move themselves (a rigid body's M V, the
     // bars' own nodes).
     void execute(const double t, const double dt) override
@@ -32,7 +33,8 @@ namespace anvil::Postprocess
       for (unsigned int i = 0; i < v.locally_owned_size(); ++i)
         if (rigid_dof.empty() || !rigid_dof[i])
           momentum[3 * dof_body[i] + dof_component[i]] +=
-            m.local_element(i) * v.local_element(i) - 0.5 * dt * (f.local_element(i) + damping_force(i));
+            is_held(i) ? m.local_element(i) * velocity_at_n(i, dt) :
+                         m.local_element(i) * v.local_element(i) - 0.5 * dt * (f.local_element(i) + damping_force(i));
       dealii::Utilities::MPI::sum(momentum, get_mpi_communicator(), momentum);
       for (const auto *family : get_families())
         family->add_momentum(dt, momentum);

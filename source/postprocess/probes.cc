@@ -20,13 +20,12 @@ namespace anvil::Postprocess
     using Interface::Interface;
 
     // The values come from the process that owns the probed node (the
-    // others add zeros); velocities at n are v^{n+1/2} - dt/2 a^n, with
-    // the mass damping's force part of a^n.
+    // others add zeros); velocities at n are v^{n+1/2} - dt/2 a^n
+    // (SimulatorAccess::velocity_at_n).
     void execute(const double t, const double dt) override
     {
       const auto          &probes = get_probes();
       const VectorType    &x = get_position(), &X = get_reference_position(), &v = get_velocity();
-      const VectorType    &f = get_force(), &m = get_mass();
       constexpr unsigned   n_values = 12;
       std::vector<double>  values(n_values * probes.size(), 0.);
       for (unsigned int p = 0; p < probes.size(); ++p)
@@ -36,8 +35,7 @@ namespace anvil::Postprocess
               {
                 const auto g                 = probes[p].x_dof + d;
                 values[n_values * p + d]     = x(g) - X(g);
-                values[n_values * p + 3 + d] =
-                  v(g) - 0.5 * dt * (f(g) + damping_force(v.get_partitioner()->global_to_local(g))) / m(g);
+                values[n_values * p + 3 + d] = velocity_at_n(v.get_partitioner()->global_to_local(g), dt);
               }
             if (probes[p].group >= 0)
               get_element_groups()[probes[p].group].cauchy_stress(probes[p].element, x.begin(),

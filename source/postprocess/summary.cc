@@ -39,6 +39,15 @@ namespace anvil::Postprocess
       // (deal.II's own accounting for the triangulation, the DoF handler
       // and the nodal vectors; the element groups' arrays): what an element
       // costs beyond the executable.
+      // And the ghost layer all processes hold: its cells (each computed
+      // twice or more) and its nodal entries (exchanged every step).
+      unsigned long ghost_cells = 0;
+      for (const auto &cell : get_triangulation().active_cell_iterators())
+        ghost_cells += cell->is_ghost() ? 1 : 0;
+      const unsigned long ghosts[2] = {ghost_cells, get_position().get_partitioner()->n_ghost_indices()};
+      unsigned long       ghost_sums[2];
+      Utilities::MPI::sum(ArrayView<const unsigned long>(ghosts, 2), get_mpi_communicator(),
+                          ArrayView<unsigned long>(ghost_sums, 2));
       double memory[4] = {double(get_triangulation().memory_consumption()),
                           double(get_dof_handler().memory_consumption()),
                           double(get_reference_position().memory_consumption() +
@@ -131,6 +140,8 @@ namespace anvil::Postprocess
         out << "memory_nodal_vectors_bytes," << memory[2] << '\n';
         out << "memory_element_state_bytes," << memory[3] << '\n';
         out << "processes," << Utilities::MPI::n_mpi_processes(get_mpi_communicator()) << '\n';
+        out << "ghost_elements," << ghost_sums[0] << '\n';
+        out << "ghost_dofs," << ghost_sums[1] << '\n';
       }
       write_atomically(get_output_directory() + "/summary.csv", out.str());
     }

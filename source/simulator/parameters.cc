@@ -415,6 +415,20 @@ namespace anvil
       // The test suite runs hundreds of scenes: it makes 'false' the
       // default through the environment (a scene's own 'set Plots' wins).
       const char *plots_default = std::getenv("ANVIL_DEFAULT_PLOTS");
+      prm.declare_entry("Partitioner",
+                        "hierarchical",
+                        Patterns::Selection("hierarchical|metis|zoltan"),
+                        "How the elements are cut into one piece per process, "
+                        "each weighed by its measured cost (a fully integrated "
+                        "element 15 one-point ones, a rigid body's 0.1): "
+                        "'hierarchical' cuts deal.II's hierarchical order of "
+                        "the cells' vertex connectivity (neighbours together, "
+                        "groups of groups) into pieces of equal weight; 'metis' "
+                        "and 'zoltan' partition the graph of the cells' faces "
+                        "with METIS or Trilinos' Zoltan (through deal.II). The "
+                        "results do not depend on it, bit for bit; the ghost "
+                        "layer and the balance do (summary.csv: ghost_elements, "
+                        "ghost_dofs; doc/performance.md). Units: none.");
       prm.declare_entry("Output compression",
                         "zlib",
                         Patterns::Selection("zlib|none"),
@@ -814,6 +828,7 @@ namespace anvil
         progress_interval = prm.get_double("Progress interval");
         make_plots       = prm.get_bool("Plots");
         compress_output  = prm.get("Output compression") == "zlib";
+        partitioner      = prm.get("Partitioner");
         checkpoint_interval      = prm.get_double("Checkpoint interval");
         checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         checkpoint_at_end        = prm.get_bool("Checkpoint at end");

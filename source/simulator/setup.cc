@@ -243,6 +243,18 @@ namespace anvil
           body.integration_at(cell->center()) == Element::Integration::full ? full_integration_weight :
                                                                               1000;
       }
+    // A graph partitioner (METIS, Trilinos' Zoltan) on the cells' face
+    // graph with the same weights.
+    if (n_ranks > 1 && partitioner != "hierarchical")
+      {
+        const std::vector<unsigned int> cell_weight(weight.begin(), weight.end());
+        GridTools::partition_triangulation(n_ranks,
+                                           cell_weight,
+                                           serial,
+                                           partitioner == "metis" ? SparsityTools::Partitioner::metis :
+                                                                    SparsityTools::Partitioner::zoltan);
+        return;
+      }
     std::vector<DynamicSparsityPattern::size_type> position_of(serial.n_active_cells());
     std::iota(position_of.begin(), position_of.end(), 0);
     if (n_ranks > 1)
@@ -447,6 +459,9 @@ namespace anvil
         constrained_bc.push_back(3 * prescribed_by[dof] + dof_component[constrained_dofs.back()]);
         velocity(dof) = value;
       }
+    held_index.assign(position.locally_owned_size(), 0);
+    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
+      held_index[constrained_dofs[k]] = k + 1;
     constrained_reaction.assign(constrained_dofs.size(), 0.);
     bc_reaction.assign(3 * boundary_conditions.size(), 0.);
     constrained_velocity_old.assign(constrained_dofs.size(), 0.);

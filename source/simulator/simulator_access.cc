@@ -241,6 +241,21 @@ namespace anvil
   }
 
 
+  bool SimulatorAccess::is_held(const unsigned int i) const
+  {
+    return i < simulator.held_index.size() && simulator.held_index[i] > 0;
+  }
+
+  double SimulatorAccess::velocity_at_n(const unsigned int i, const double dt) const
+  {
+    if (is_held(i))
+      return simulator.constrained_velocity[simulator.held_index[i] - 1];
+    const double v = simulator.velocity.local_element(i);
+    if (simulator.hanging.is_hanging(i))
+      return v;
+    return v - 0.5 * dt * (simulator.force.local_element(i) + damping_force(i)) / simulator.mass.local_element(i);
+  }
+
   const std::vector<double> &SimulatorAccess::get_constrained_velocity() const
   {
     return simulator.constrained_velocity;

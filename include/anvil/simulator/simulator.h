@@ -331,6 +331,8 @@ namespace anvil
     bool        output_directory_ready = false;
     bool        make_plots = false;
     bool        compress_output = true;
+    /** 'Partitioner': hierarchical, metis or zoltan. */
+    std::string partitioner = "hierarchical";
     unsigned int max_steps;
 
     std::vector<Body>                     bodies;
@@ -385,6 +387,8 @@ namespace anvil
     /** Constrained dofs (local indices) and their prescribed velocities. */
     std::vector<unsigned int> constrained_dofs;
     std::vector<double>       constrained_velocity;
+    /** Per owned dof: k + 1 for constrained_dofs[k], 0 where free. */
+    std::vector<unsigned int> held_index;
     /** Per constrained dof: the reaction of the last step (for the
         trapezoidal reaction work) and v^{n-1/2} during the update. */
     std::vector<double>       constrained_reaction, constrained_velocity_old;

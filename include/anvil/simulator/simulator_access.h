@@ -123,6 +123,14 @@ namespace anvil
     /** The constrained dofs (local indices of owned dofs) and the
         velocities they are held at. */
     const std::vector<unsigned int> &get_constrained_dofs() const;
+    /** The velocity of the owned dof @p i at the integer time n, the last
+        step @p dt after the half step: v^{n+1/2} - dt/2 a^n with the mass
+        damping's force part of a^n; a constrained dof's prescribed
+        velocity (its reaction is part of a^n), a hanging dof's half-step
+        velocity (it has no mass of its own). */
+    double velocity_at_n(unsigned int i, double dt) const;
+    /** Whether the owned dof @p i is held by a boundary condition. */
+    bool   is_held(unsigned int i) const;
     const std::vector<double>       &get_constrained_velocity() const;
     /** The body of each element group. */
     const std::vector<unsigned int> &get_group_body() const;
