@@ -227,6 +227,19 @@ namespace anvil
                       "",
                       Patterns::Anything(),
                       "Upper corner of the refinement box. Units: m.");
+    prm.declare_entry("Near body",
+                      "",
+                      Patterns::Anything(),
+                      "Also refine the elements whose reference centroid lies "
+                      "within 'Distance' of this other body's box (the "
+                      "smallest box around its reference mesh): ahead of an "
+                      "impactor, before the wave arrives. Empty: none. Units: "
+                      "none.");
+    prm.declare_entry("Distance",
+                      "0",
+                      Patterns::Double(0.),
+                      "The reach of 'Near body' (the gap to the impactor and "
+                      "the depth to refine). Units: m.");
     prm.declare_entry("Levels",
                       "1",
                       Patterns::Integer(0, 4),
@@ -284,9 +297,23 @@ namespace anvil
   }
 
 
-  bool Body::in_refinement_region(const dealii::Point<3> &centroid) const
+  bool Body::in_refinement_region(const dealii::Point<3> &centroid,
+                                  const dealii::Point<3> &near_lower,
+                                  const dealii::Point<3> &near_upper) const
   {
-    return refinement_levels > 0 && inside(centroid, refinement_lower, refinement_upper);
+    if (refinement_levels == 0)
+      return false;
+    if (has_refinement_box && inside(centroid, refinement_lower, refinement_upper))
+      return true;
+    if (refinement_near.empty())
+      return false;
+    double d2 = 0;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double out = std::max({near_lower[d] - centroid[d], 0., centroid[d] - near_upper[d]});
+        d2 += out * out;
+      }
+    return d2 <= refinement_distance * refinement_distance;
   }
 
 
@@ -425,7 +452,16 @@ namespace anvil
     prm.leave_subsection();
     prm.enter_subsection("Refinement region");
     refinement_levels = 0;
-    if (parse_box(prm, "subsection 'Body " + name + "/Refinement region': ", refinement_lower, refinement_upper))
+    has_refinement_box =
+      parse_box(prm, "subsection 'Body " + name + "/Refinement region': ", refinement_lower, refinement_upper);
+    refinement_near     = dealii::Utilities::trim(prm.get("Near body"));
+    refinement_distance = prm.get_double("Distance");
+    if (!refinement_near.empty() && !(refinement_distance > 0))
+      throw InputError("subsection 'Body " + name + "/Refinement region': 'Near body' needs a 'Distance' > 0");
+    if (refinement_near == name)
+      throw InputError("subsection 'Body " + name + "/Refinement region': 'Near body' names the body itself "
+                       "(use the box)");
+    if (has_refinement_box || !refinement_near.empty())
       refinement_levels = prm.get_integer("Levels");
     prm.leave_subsection();
     if (refinement_levels > 0 && material->is_rigid())

@@ -870,6 +870,9 @@ namespace anvil
                              "' is not in 'Bodies' (" + join(body_names) +
                              ")");
         };
+        for (const auto &body : bodies)
+          if (!body.refinement_near_body().empty())
+            check_body(body.refinement_near_body(), "Body " + body.name + "/Refinement region");
         boundary_conditions.resize(bc_names.size());
         for (unsigned int i = 0; i < bc_names.size(); ++i)
           {

@@ -198,13 +198,36 @@ namespace anvil
     unsigned int levels = 0;
     for (const auto &body : bodies)
       levels = std::max(levels, body.local_refinement_levels());
+    if (levels == 0)
+      return;
+    // Each body's box in the reference configuration (for 'Near body').
+    std::vector<Point<3>> lower(bodies.size(), Point<3>(1e300, 1e300, 1e300)),
+      upper(bodies.size(), Point<3>(-1e300, -1e300, -1e300));
+    for (const auto &cell : serial.active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            lower[cell->material_id()][d] = std::min(lower[cell->material_id()][d], cell->vertex(v)[d]);
+            upper[cell->material_id()][d] = std::max(upper[cell->material_id()][d], cell->vertex(v)[d]);
+          }
+    std::vector<unsigned int> near(bodies.size(), numbers::invalid_unsigned_int);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      if (!bodies[b].refinement_near_body().empty())
+        for (unsigned int o = 0; o < bodies.size(); ++o)
+          if (bodies[o].name == bodies[b].refinement_near_body())
+            near[b] = o;
+    const Point<3> none(1e300, 1e300, 1e300);
     for (unsigned int level = 0; level < levels; ++level)
       {
         bool any = false;
         for (const auto &cell : serial.active_cell_iterators())
           {
-            const Body &body = bodies[cell->material_id()];
-            if (level < body.local_refinement_levels() && body.in_refinement_region(cell->center()))
+            const unsigned int b    = cell->material_id();
+            const Body        &body = bodies[b];
+            const bool         with_near = near[b] != numbers::invalid_unsigned_int;
+            if (level < body.local_refinement_levels() &&
+                body.in_refinement_region(cell->center(), with_near ? lower[near[b]] : none,
+                                          with_near ? upper[near[b]] : none))
               {
                 cell->set_refine_flag();
                 any = true;

@@ -99,8 +99,17 @@ namespace anvil
     }
 
     /** Whether an element with reference centroid @p centroid lies in the
-        refinement region. */
-    bool in_refinement_region(const dealii::Point<3> &centroid) const;
+        refinement region: the box, or within the distance of the box
+        @p near_lower, @p near_upper around the 'Near body'. */
+    bool in_refinement_region(const dealii::Point<3> &centroid,
+                              const dealii::Point<3> &near_lower,
+                              const dealii::Point<3> &near_upper) const;
+
+    /** The body whose surroundings are refined too (empty: none). */
+    const std::string &refinement_near_body() const
+    {
+      return refinement_near;
+    }
 
   private:
     void create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const;
@@ -124,6 +133,9 @@ namespace anvil
     bool                 has_full_region     = false;
     dealii::Point<3>     full_region_lower, full_region_upper;
     unsigned int         refinement_levels = 0;
+    bool                 has_refinement_box = false;
     dealii::Point<3>     refinement_lower, refinement_upper;
+    std::string          refinement_near;
+    double               refinement_distance = 0;
   };
 } // namespace anvil
