@@ -243,11 +243,12 @@ namespace anvil
     prm.declare_entry("Levels",
                       "1",
                       Patterns::Integer(0, 4),
-                      "How many times the elements in the box are halved "
-                      "(each level refines the elements of the last whose "
-                      "centroid is in the box; neighbours differ by one level "
-                      "at most, so a ring of elements outside the box may be "
-                      "refined too). Units: none.");
+                      "How many times the elements in the region (the box and "
+                      "the reach of 'Near body') are halved; 0: none. Each "
+                      "level refines the elements of the last whose centroid "
+                      "is in the region; neighbours differ by one level at "
+                      "most, so a ring of elements outside it may be refined "
+                      "too. Units: none.");
     prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
   }
