@@ -7,30 +7,9 @@
 
 namespace anvil::Contact
 {
-  std::map<std::string, AlgorithmEntry> &algorithm_registry()
-  {
-    // A function-local static: safe to use from static initialisers of
-    // other translation units (and of plugins).
-    static std::map<std::string, AlgorithmEntry> algorithms;
-    return algorithms;
-  }
-
-
-  bool register_algorithm(const std::string &name, AlgorithmEntry entry)
-  {
-    algorithm_registry()[name] = std::move(entry);
-    return true;
-  }
-
-
   void declare_parameters(dealii::ParameterHandler &prm)
   {
-    std::string pattern, doc = "How the pair's contact is computed. Choices:";
-    for (const auto &[name, entry] : algorithm_registry())
-      {
-        pattern += (pattern.empty() ? "" : "|") + name;
-        doc += " '" + name + "': " + entry.description;
-      }
+    std::string doc = Registry::documentation("How the pair's contact is computed. Choices:");
     doc += " 'automatic' (the default): 'kinematic' for every pair, its two passes "
            "solved together against a rigid body (a hammer, a wall, an impactor) and "
            "balanced between two deformable bodies. Chosen from the accuracy study "
@@ -42,11 +21,10 @@ namespace anvil::Contact
            "+12 %) and two unequal rods' contact time within 0.5 % (the penalty: +4.9 %). "
            "The seed's own contact (section 4.3, Eq. (59)) is 'penalty'; the paper's scenes "
            "(prm/elastic_rod_impact, prm/rc_column_impact) state it.";
-    prm.declare_entry("Algorithm", "automatic", dealii::Patterns::Selection("automatic|" + pattern), doc);
+    prm.declare_entry("Algorithm", "automatic", dealii::Patterns::Selection("automatic|" + Registry::names()), doc);
     prm.declare_entry("First body", "", dealii::Patterns::Anything(), "Name of the first body of the pair.");
     prm.declare_entry("Second body", "", dealii::Patterns::Anything(), "Name of the second body of the pair.");
-    for (const auto &[name, entry] : algorithm_registry())
-      entry.declare_parameters(prm);
+    Registry::declare_parameters(prm, false);
   }
 
 
@@ -61,7 +39,7 @@ namespace anvil::Contact
     std::string name = prm.get("Algorithm");
     if (name == "automatic")
       name = "kinematic";
-    auto algorithm         = algorithm_registry().at(name).create();
+    auto algorithm         = Registry::get(name, "subsection 'Contact pair " + pair_name + "': entry 'Algorithm'").create();
     algorithm->name        = pair_name;
     algorithm->first_body  = first;
     algorithm->second_body = second;
@@ -69,3 +47,5 @@ namespace anvil::Contact
     return algorithm;
   }
 } // namespace anvil::Contact
+
+template class anvil::Registry<anvil::Contact::Algorithm>;

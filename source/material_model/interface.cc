@@ -119,57 +119,26 @@ namespace anvil
     }
 
 
-    std::map<std::string, RegistryEntry> &registry()
-    {
-      // A function-local static: safe to use from static initialisers of
-      // other translation units.
-      static std::map<std::string, RegistryEntry> models;
-      return models;
-    }
-
-
-    bool register_model(const std::string &name, RegistryEntry entry)
-    {
-      registry()[name] = std::move(entry);
-      return true;
-    }
-
-
-    std::string model_name_pattern()
-    {
-      std::string pattern;
-      for (const auto &[name, entry] : registry())
-        pattern += (pattern.empty() ? "" : "|") + name;
-      return pattern;
-    }
-
-
     void declare_parameters(dealii::ParameterHandler &prm)
     {
-      std::string doc = "The material model. Choices:";
-      for (const auto &[name, entry] : registry())
-        doc += " '" + name + "': " + entry.description;
       prm.declare_entry("Model",
                         "elastic",
-                        dealii::Patterns::Selection(model_name_pattern()),
-                        doc);
-      for (const auto &[name, entry] : registry())
-        {
-          prm.enter_subsection(name);
-          entry.declare_parameters(prm);
-          prm.leave_subsection();
-        }
+                        dealii::Patterns::Selection(Registry::names()),
+                        Registry::documentation("The material model. Choices:"));
+      Registry::declare_parameters(prm, true);
     }
 
 
     std::unique_ptr<Interface> create(dealii::ParameterHandler &prm)
     {
       const std::string name  = prm.get("Model");
-      auto              model = registry().at(name).create();
+      auto              model = Registry::get(name, "entry 'Model'").create();
       prm.enter_subsection(name);
       model->parse_parameters(prm);
       prm.leave_subsection();
       return model;
     }
   } // namespace MaterialModel
+
+  template class Registry<MaterialModel::Interface>;
 } // namespace anvil

@@ -24,11 +24,6 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    int order() const override
-    {
-      return 20;
-    }
-
     void end_of_run(double) override
     {
       const auto        &bodies           = get_bodies();

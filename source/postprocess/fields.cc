@@ -30,12 +30,6 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    /** Frames before the summaries at the end of a run. */
-    int order() const override
-    {
-      return 10;
-    }
-
     void write_frame(const double t, const std::string &basename, const unsigned int output_count) override
     {
       const auto        &triangulation    = get_triangulation();

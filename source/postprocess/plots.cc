@@ -19,10 +19,10 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    /** Last: they read the histories and summary.csv. */
-    int order() const override
+    /** Last: they read the histories, bodies.csv and summary.csv. */
+    std::vector<std::string> run_after() const override
     {
-      return 40;
+      return {"bodies", "energies", "erosion", "momentum", "probes", "reactions", "summary"};
     }
 
     void end_of_run(double) override

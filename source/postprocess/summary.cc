@@ -27,10 +27,10 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    /** After the last frame and bodies.csv. */
-    int order() const override
+    /** The figures the probes and the reactions keep in the run's summary. */
+    std::vector<std::string> run_after() const override
     {
-      return 30;
+      return {"probes", "reactions"};
     }
 
     void end_of_run(const double wall_time) override

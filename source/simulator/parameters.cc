@@ -465,6 +465,10 @@ namespace anvil
     }
     prm.leave_subsection();
 
+    prm.enter_subsection("Postprocess");
+    Postprocess::declare_parameters(prm);
+    prm.leave_subsection();
+
     for (const auto &b : body_names)
       {
         prm.enter_subsection("Body " + b);
@@ -942,6 +946,9 @@ namespace anvil
             if (!probes[i].body.empty())
               check_body(probes[i].body, "Probe " + probe_names[i]);
           }
+        prm.enter_subsection("Postprocess");
+        postprocessors = Postprocess::create_all(*this, prm);
+        prm.leave_subsection();
       }
     catch (const InputError &e)
       {

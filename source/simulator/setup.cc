@@ -55,7 +55,6 @@ namespace anvil
                          " (an entry that needs numbers holds something else; "
                          "'anvil --print-parameters' shows what each entry takes)");
       }
-    postprocessors = Postprocess::create_all(*this);
   }
 
 

@@ -21,7 +21,11 @@ with their numbers of calls. Checked here:
   bars (Table 1 steel, nothing said of rate effects) 'rate effects in 2 of 2
   rebar sets (Cowper-Symonds';
 - the concrete pull-out: a 'rebar and bond' section entered once a step,
-  no 'contact' section.
+  no 'contact' section;
+- the rods with 'Postprocess/List = energies, probes': energy.csv and the
+  probes' histories are written, and none of the other postprocessors'
+  files (momentum.csv, reactions.csv, bodies.csv, summary.csv, frames), with
+  the same energy rows as the run with all of them.
 """
 import os
 import re
@@ -159,4 +163,23 @@ c.check_true("pull-out: 'rebar and bond' entered once a step (and once for the i
              bars["sections"].get("rebar and bond", (0, 0))[0] == int(bars["summary"]["steps"]) + 1,
              str(bars["sections"].get("rebar and bond")))
 c.check_true("pull-out: no 'contact' section", "contact" not in bars["sections"])
+
+# Only the postprocessors the scene lists.
+prm = write_scene(os.path.join(work, "rods_listed.prm"), include=rod, text=quiet + """
+subsection Postprocess
+  set List = energies, probes
+end
+""")
+code, out, err = run_anvil(args.anvil, prm, cwd=work)
+c.check_true("'Postprocess/List = energies, probes': anvil exits 0", code == 0, err.strip()[-300:])
+listed = os.path.join(work, "output", "rods_listed")
+files = set(os.listdir(listed)) if os.path.isdir(listed) else set()
+c.check_true("listed: energy.csv and probe_face_a.csv written", {"energy.csv", "probe_face_a.csv"} <= files,
+             str(sorted(files)))
+unlisted = {"momentum.csv", "reactions.csv", "bodies.csv", "summary.csv", "solution.pvd"} & files
+c.check_true("listed: no file of the postprocessors left out", not unlisted, str(sorted(unlisted)))
+if "energy.csv" in files:
+    c.check_true("listed: energy.csv equals the full run's, row by row",
+                 open(os.path.join(listed, "energy.csv")).read() ==
+                 open(os.path.join(base["dir"], "energy.csv")).read())
 c.finish()

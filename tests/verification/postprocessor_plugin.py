@@ -12,6 +12,11 @@ centre_of_mass.csv against momentum conservation.
 - np = 2 writes the rows of np = 1 (relative difference below 1e-9: the
   nodal positions are bitwise the same, the sums over processes are not).
 - The file is listed in anvil_files.txt (a later run deletes exactly it).
+- The plugin's own parameter, 'Postprocess/centre of mass/Bodies = rod_b':
+  the mass it sums is rod B's 0.1 kg, and rod B's centre of mass ends
+  where bar theory puts it: pushed by rho c A v0 / 2 = 0.5 N for
+  2L/c = 0.2 s, then moving at 1 m/s, x_c(0.3 s) = 5 + 0.1 + 0.1 m. An
+  unknown body in that entry stops the run with one line naming the entry.
 """
 import os
 from anvil_test import Checker, arguments, build_plugin, max_relative_difference, read_csv, run_anvil, write_scene
@@ -49,4 +54,35 @@ c.check_below("largest |x_c(t) - V_c t| over the rods' length", worst, 1e-10)
 worst_yz = max(max(abs(v) for v in d["y"]), max(abs(v) for v in d["z"]))
 c.check_below("largest |y_c|, |z_c| (m)", worst_yz, 1e-10)
 c.check_below("np = 2 against np = 1, centre of mass rows", max_relative_difference(rows[2], rows[1]), 1e-9)
+
+# The plugin's own parameter.
+for bodies, name in (("rod_b", "rod_b_only"), ("rod_b, rod_c", "unknown_body")):
+    prm = write_scene(os.path.join(args.work_dir, f"{name}.prm"), include=scene, text=f"""
+set Additional shared libraries = {library}
+subsection Simulation
+  set Output directory = output/{name}
+  set Output interval = 0.3
+  set Print wall times = false
+  set Plots = false
+end
+subsection Postprocess
+  subsection centre of mass
+    set Bodies = {bodies}
+  end
+end
+""")
+    code, out, err = run_anvil(args.anvil, prm, np=1, cwd=args.work_dir)
+    if name == "unknown_body":
+        lines = [l for l in err.strip().splitlines() if l.startswith("anvil: error")]
+        c.check_true("'Bodies = rod_b, rod_c': exit 2 and one line naming the entry",
+                     code == 2 and len(lines) == 1 and "Postprocess/centre of mass/Bodies" in lines[0]
+                     and "rod_c" in lines[0], err.strip()[-300:])
+        continue
+    if not c.check_true("'Bodies = rod_b': the run ends", code == 0, err.strip()[-400:]):
+        c.finish()
+    b = read_csv(os.path.join(args.work_dir, "output", name, name, "centre_of_mass.csv"))
+    c.check("rod B's mass, rho V", max(b["mass"]), 0.1, 1e-12, relative=True)
+    c.check("rod B's centre of mass at the start (m)", b["x"][0], 5.0, 1e-12)
+    c.check("rod B's centre of mass moved by 0.3 s, against bar theory's 0.2 m", b["x"][-1] - 5.0, 0.2, 0.05,
+            relative=True)
 c.finish()

@@ -1,8 +1,9 @@
 /**
  * @file
  * centre_of_mass.csv: the mass and the centre of mass of the deformable
- * bodies at every history row, a postprocessor plugin (doc/extending.md,
- * "A postprocessor as a plugin").
+ * bodies at every history row, or of those 'Postprocess/centre of mass/
+ * Bodies' names: a postprocessor plugin with a parameter
+ * (doc/extending.md, "A postprocessor as a plugin").
  *
  * Without supports, gravity or rigid bodies the nodal forces of the
  * elements and of the contact pairs sum to zero, so the central-difference
@@ -10,11 +11,13 @@
  * straight line at constant speed, whatever the step sizes: a conservation
  * law to round-off that tests/verification/postprocessor_plugin.py checks.
  */
+#include <anvil/mesh/body.h>
 #include <anvil/postprocess/interface.h>
-#include <anvil/simulator/simulator.h>
+#include <anvil/utilities/input_error.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <iomanip>
 
 namespace anvil::Postprocess
@@ -23,6 +26,34 @@ namespace anvil::Postprocess
   {
   public:
     using Interface::Interface;
+
+    // Its own entries, declared in the scene's 'Postprocess/centre of
+    // mass' subsection (the registration below names this function).
+    static void declare_parameters(dealii::ParameterHandler &prm)
+    {
+      prm.declare_entry("Bodies", "", dealii::Patterns::Anything(),
+                        "The deformable bodies whose centre of mass is written, comma-separated "
+                        "(empty: all of them).");
+    }
+
+    // ... and read once the scene is parsed, in the same subsection. A
+    // name that is no body of the scene is bad input: one line, naming the
+    // entry.
+    void parse_parameters(dealii::ParameterHandler &prm) override
+    {
+      const auto &bodies = get_bodies();
+      const auto  names  = dealii::Utilities::split_string_list(prm.get("Bodies"));
+      selected.assign(bodies.size(), names.empty() ? 1 : 0);
+      for (const auto &name : names)
+        {
+          const auto it = std::find_if(bodies.begin(), bodies.end(),
+                                       [&](const Body &b) { return b.name == name; });
+          if (it == bodies.end())
+            throw InputError("entry 'Postprocess/centre of mass/Bodies': '" + name +
+                             "' is not a body of the scene");
+          selected[it - bodies.begin()] = 1;
+        }
+    }
 
     // Called at every history row on every process, with the positions
     // x^n. Each process sums over the dofs it owns (the lumped mass m_i of
@@ -35,9 +66,10 @@ namespace anvil::Postprocess
       const VectorType &m         = get_mass();
       const auto       &component = get_dof_component();
       const auto       &rigid     = get_rigid_dof();
+      const auto       &body      = get_dof_body();
       std::vector<double> sums(4, 0.);
       for (unsigned int i = 0; i < x.locally_owned_size(); ++i)
-        if (rigid.empty() || !rigid[i])
+        if ((rigid.empty() || !rigid[i]) && selected[body[i]])
           {
             if (component[i] == 0)
               sums[0] += m.local_element(i);
@@ -66,10 +98,12 @@ namespace anvil::Postprocess
     }
 
   private:
-    HistoryFile file;
+    HistoryFile                file;
+    std::vector<unsigned char> selected;
   };
 
-  ANVIL_REGISTER_POSTPROCESSOR(CentreOfMass, "centre of mass",
-                               "centre_of_mass.csv: mass and centre of mass of the deformable bodies "
-                               "(a plugin: doc/extending.md).")
+  ANVIL_REGISTER_POSTPROCESSOR_WITH_PARAMETERS(CentreOfMass, "centre of mass",
+                                               "centre_of_mass.csv: mass and centre of mass of the "
+                                               "deformable bodies, or of those 'Bodies' names (a "
+                                               "plugin: doc/extending.md).")
 } // namespace anvil::Postprocess

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <anvil/rigid_body/rigid_body.h>
+#include <anvil/utilities/registry.h>
 #include <anvil/utilities/state_archive.h>
 
 #include <deal.II/base/index_set.h>
@@ -278,18 +279,8 @@ namespace anvil::Contact
   }
 
 
-  struct AlgorithmEntry
-  {
-    std::string                                     description;
-    std::function<void(dealii::ParameterHandler &)> declare_parameters;
-    std::function<std::unique_ptr<Algorithm>()>     create;
-  };
-
-  /** All registered algorithms, by name. */
-  std::map<std::string, AlgorithmEntry> &algorithm_registry();
-
-  /** Called by ANVIL_REGISTER_CONTACT_ALGORITHM. */
-  bool register_algorithm(const std::string &name, AlgorithmEntry entry);
+  /** The registered algorithms, by name (ANVIL_REGISTER_CONTACT_ALGORITHM). */
+  using Registry = ::anvil::Registry<Algorithm>;
 
   /** In a 'Contact pair NAME' subsection: 'Algorithm', 'First body',
       'Second body' and every registered algorithm's entries. */
@@ -302,6 +293,12 @@ namespace anvil::Contact
   std::unique_ptr<Algorithm> create(dealii::ParameterHandler &prm, const std::string &pair_name);
 } // namespace anvil::Contact
 
+namespace anvil
+{
+  // The table is the executable's (source/contact/interface.cc).
+  extern template class Registry<Contact::Algorithm>;
+}
+
 /**
  * Register contact algorithm @p classname under @p name. Put this at the
  * bottom of the algorithm's .cc file, in namespace anvil::Contact.
@@ -310,7 +307,7 @@ namespace anvil::Contact
   namespace                                                             \
   {                                                                     \
     const bool anvil_registered_contact_##classname =                   \
-      ::anvil::Contact::register_algorithm(                             \
+      ::anvil::Contact::Registry::add(                                  \
         name,                                                           \
         {description,                                                   \
          &classname::declare_parameters,                                \

@@ -9,6 +9,8 @@
  */
 #pragma once
 
+#include <anvil/utilities/registry.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <cstddef>
@@ -387,22 +389,8 @@ namespace anvil
     };
 
 
-    /** What the registry knows of one model. */
-    struct RegistryEntry
-    {
-      std::string description;
-      std::function<void(dealii::ParameterHandler &)> declare_parameters;
-      std::function<std::unique_ptr<Interface>()>     create;
-    };
-
-    /** All registered models, by name. */
-    std::map<std::string, RegistryEntry> &registry();
-
-    /** Called by ANVIL_REGISTER_MATERIAL_MODEL. */
-    bool register_model(const std::string &name, RegistryEntry entry);
-
-    /** "elastic|neo-Hookean|...", for Patterns::Selection. */
-    std::string model_name_pattern();
+    /** The registered models, by name (ANVIL_REGISTER_MATERIAL_MODEL). */
+    using Registry = ::anvil::Registry<Interface>;
 
     /**
      * Declare the "Model" selection and one subsection per registered
@@ -416,6 +404,9 @@ namespace anvil
      */
     std::unique_ptr<Interface> create(dealii::ParameterHandler &prm);
   } // namespace MaterialModel
+
+  // The table is the executable's (source/material_model/interface.cc).
+  extern template class Registry<MaterialModel::Interface>;
 } // namespace anvil
 
 /**
@@ -426,7 +417,7 @@ namespace anvil
   namespace                                                          \
   {                                                                  \
     const bool anvil_registered_##classname =                        \
-      ::anvil::MaterialModel::register_model(                        \
+      ::anvil::MaterialModel::Registry::add(                         \
         name,                                                        \
         {description,                                                \
          &classname::declare_parameters,                             \

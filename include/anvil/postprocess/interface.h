@@ -4,9 +4,11 @@
  * (energy.csv, momentum.csv, probes, reactions, erosion, the VTU frames,
  * bodies.csv, summary.csv, the plots), each in its own file, registered with
  * ANVIL_REGISTER_POSTPROCESSOR as material models and contact algorithms
- * are (ASPECT's include/aspect/postprocess/interface.h is the model). Every
- * registered postprocessor runs in every scene, Anvil's own and a plugin's
- * loaded with 'Additional shared libraries' alike (doc/extending.md).
+ * are (ASPECT's include/aspect/postprocess/interface.h is the model). A
+ * scene runs those its 'Postprocess/List' names, by default every one,
+ * Anvil's own and a plugin's loaded with 'Additional shared libraries'
+ * alike (doc/extending.md); each may declare entries of its own in
+ * 'Postprocess/NAME', and names the postprocessors it runs after.
  *
  * Each hook is called on every process (a postprocessor sums over the
  * processes what it needs; rank 0 writes); a file is noted with
@@ -18,7 +20,10 @@
 
 #include <anvil/simulator/simulator_access.h>
 #include <anvil/utilities/output_files.h>
+#include <anvil/utilities/registry.h>
 #include <anvil/utilities/state_archive.h>
+
+#include <deal.II/base/parameter_handler.h>
 
 #include <functional>
 #include <map>
@@ -33,12 +38,20 @@ namespace anvil::Postprocess
   public:
     using SimulatorAccess::SimulatorAccess;
 
-    /** Postprocessors run in the order of this key, then of their names;
-        the end of a run needs it (the last frame, then bodies.csv, then
-        summary.csv, then the plots, which read them). */
-    virtual int order() const
+    /** The postprocessors this one runs after where the scene has them
+        (their histories, frames or figures are what it reads): every hook
+        is called in an order that honours these, ties by name. */
+    virtual std::vector<std::string> run_after() const
     {
-      return 0;
+      return {};
+    }
+
+    /** Read its entries (declared by the static declare_parameters() its
+        registration names) from its subsection 'Postprocess/NAME', the
+        current one. */
+    virtual void parse_parameters(dealii::ParameterHandler &prm)
+    {
+      (void)prm;
     }
 
     /** A history row at time @p t, between the velocity and the position
@@ -103,21 +116,24 @@ namespace anvil::Postprocess
   };
 
 
-  struct RegistryEntry
-  {
-    std::string                                              description;
-    std::function<std::unique_ptr<Interface>(Simulator &)> create;
-  };
+  /** The registered postprocessors, by name (ANVIL_REGISTER_POSTPROCESSOR). */
+  using Registry = ::anvil::Registry<Interface, Simulator &>;
 
-  /** All registered postprocessors, by name. */
-  std::map<std::string, RegistryEntry> &registry();
+  /** 'Postprocess': 'List' and each registered postprocessor's own
+      subsection. */
+  void declare_parameters(dealii::ParameterHandler &prm);
 
-  /** Called by ANVIL_REGISTER_POSTPROCESSOR. */
-  bool register_postprocessor(const std::string &name, RegistryEntry entry);
-
-  /** One of each registered postprocessor for @p simulator, in their order. */
-  std::vector<std::unique_ptr<Interface>> create_all(Simulator &simulator);
+  /** The postprocessors the scene lists (the current subsection of @p prm
+      is 'Postprocess'), each with its entries read, in the order their
+      run_after() asks for (ties by name). InputError for an unknown name. */
+  std::vector<std::unique_ptr<Interface>> create_all(Simulator &simulator, dealii::ParameterHandler &prm);
 } // namespace anvil::Postprocess
+
+namespace anvil
+{
+  // The table is the executable's (source/postprocess/interface.cc).
+  extern template class Registry<Postprocess::Interface, Simulator &>;
+}
 
 /**
  * Register postprocessor @p classname (constructed from a Simulator &) under
@@ -128,9 +144,26 @@ namespace anvil::Postprocess
   namespace                                                                      \
   {                                                                              \
     const bool anvil_registered_postprocessor_##classname =                      \
-      ::anvil::Postprocess::register_postprocessor(                              \
-        name, {description, [](::anvil::Simulator &simulator) {                 \
+      ::anvil::Postprocess::Registry::add(                                       \
+        name, {description, nullptr, [](::anvil::Simulator &simulator) {         \
                  return std::unique_ptr<::anvil::Postprocess::Interface>(       \
                    std::make_unique<classname>(simulator));                     \
                }});                                                              \
+  }
+
+/**
+ * The same for a postprocessor with entries of its own: @p classname has a
+ * static declare_parameters(dealii::ParameterHandler &), called in
+ * 'Postprocess/NAME', and reads them in parse_parameters().
+ */
+#define ANVIL_REGISTER_POSTPROCESSOR_WITH_PARAMETERS(classname, name, description) \
+  namespace                                                                          \
+  {                                                                                  \
+    const bool anvil_registered_postprocessor_##classname =                          \
+      ::anvil::Postprocess::Registry::add(                                           \
+        name, {description, &classname::declare_parameters,                          \
+               [](::anvil::Simulator &simulator) {                                   \
+                 return std::unique_ptr<::anvil::Postprocess::Interface>(           \
+                   std::make_unique<classname>(simulator));                         \
+               }});                                                                  \
   }
