@@ -49,13 +49,10 @@ namespace anvil
                       "Highest corner of the selection box. Units: m.");
     prm.declare_entry("Type",
                       "fixed",
-                      Patterns::Selection("fixed|velocity"),
-                      "'fixed': zero velocity; 'velocity': the constant "
-                      "'Velocity' from t = 0 on.");
-    prm.declare_entry("Velocity",
-                      "0, 0, 0",
-                      Patterns::List(Patterns::Double(), 3, 3),
-                      "Prescribed velocity for 'Type = velocity'. Units: m/s.");
+                      Patterns::Selection(BoundaryConditions::Registry::names()),
+                      BoundaryConditions::Registry::documentation(
+                        "What the selected components of the selected nodes follow. Choices:"));
+    BoundaryConditions::Registry::declare_parameters(prm, false);
     prm.declare_entry("Components",
                       "x, y, z",
                       Patterns::MultipleSelection("x|y|z"),
@@ -91,8 +88,10 @@ namespace anvil
     };
     lower    = dealii::Point<3>(vec("Box lower corner"));
     upper    = dealii::Point<3>(vec("Box upper corner"));
-    velocity = (prm.get("Type") == "velocity") ? vec("Velocity") :
-                                                 dealii::Tensor<1, 3>();
+    const std::string where = "subsection 'Boundary condition " + name + "'";
+    auto plugin = BoundaryConditions::Registry::get(prm.get("Type"), where + ": entry 'Type'").create();
+    plugin->parse_parameters(prm, where);
+    motion = std::move(plugin);
     const std::string c = prm.get("Components");
     for (unsigned int d = 0; d < 3; ++d)
       components[d] = c.find(std::string(1, char('x' + d))) != std::string::npos;

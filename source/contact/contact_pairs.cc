@@ -2,6 +2,7 @@
  * @file
  * The contact pairs of a scene as one family (contact/contact_pairs.h).
  */
+#include <anvil/boundary_conditions/constraints.h>
 #include <anvil/contact/contact_pairs.h>
 #include <anvil/mesh/body.h>
 #include <anvil/simulator/force_contributor.h>
@@ -257,8 +258,8 @@ namespace anvil::Contact
     VectorType       &force            = get_force();
     const VectorType &mass             = get_mass();
     const auto       &rigid_dof        = get_rigid_dof();
-    const auto       &constrained      = get_constrained_dofs();
-    const auto       &held_velocity    = get_constrained_velocity();
+    const auto       &constrained      = get_constraints().held_dofs();
+    const auto       &held_velocity    = get_constraints().held_velocities();
     const MPI_Comm    mpi_communicator = get_mpi_communicator();
     // Per owned dof, its constraint (k + 1; 0: free).
     std::vector<unsigned int> held(position.locally_owned_size(), 0);

@@ -3,6 +3,7 @@
  * momentum.csv: the linear momentum of each body and of the scene at time n
  * (a conservation check: constant without supports and gravity).
  */
+#include <anvil/boundary_conditions/constraints.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/mesh/body.h>
 #include <anvil/simulator/force_contributor.h>
@@ -34,7 +35,7 @@ namespace anvil::Postprocess
         if (rigid_dof.empty() || !rigid_dof[i])
           momentum[3 * dof_body[i] + dof_component[i]] +=
             is_held(i) ? m.local_element(i) * velocity_at_n(i, dt) :
-                         m.local_element(i) * v.local_element(i) - 0.5 * dt * (f.local_element(i) + damping_force(i));
+                         m.local_element(i) * v.local_element(i) - 0.5 * dt * (f.local_element(i) + get_constraints().damping_force(i));
       dealii::Utilities::MPI::sum(momentum, get_mpi_communicator(), momentum);
       for (const auto *family : get_families())
         family->add_momentum(dt, momentum);

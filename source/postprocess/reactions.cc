@@ -4,7 +4,7 @@
  * body, summed per condition; the peaks summary.csv reports (and the axial
  * capacity of a capacity stage).
  */
-#include <anvil/boundary_conditions/boundary_condition.h>
+#include <anvil/boundary_conditions/constraints.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/simulator/records.h>
 
@@ -22,13 +22,12 @@ namespace anvil::Postprocess
 
     void execute(const double t, double) override
     {
-      std::vector<double> reactions(get_bc_reaction());
-      if (reactions.empty())
+      // (The sums over the processes: the constraints' family forms them
+      // before the rows, with the peaks summary.csv reports.)
+      const auto &reactions = get_constraints().reactions();
+      if (reactions.empty() || !is_root())
         return;
-      dealii::Utilities::MPI::sum(reactions, get_mpi_communicator(), reactions);
-      if (!is_root())
-        return;
-      const auto &conditions = get_boundary_conditions();
+      const auto &conditions = get_constraints().get_conditions();
       if (!file.is_open())
         {
           record_output("reactions.csv");
@@ -42,17 +41,6 @@ namespace anvil::Postprocess
       for (unsigned int k = 0; k < reactions.size(); ++k)
         file << ',' << reactions[k];
       file << '\n';
-      auto magnitude = [&](const unsigned int b) {
-        return std::sqrt(reactions[3 * b] * reactions[3 * b] + reactions[3 * b + 1] * reactions[3 * b + 1] +
-                         reactions[3 * b + 2] * reactions[3 * b + 2]);
-      };
-      auto &peak = get_peak_bc_reaction();
-      peak.resize(conditions.size(), 0.);
-      for (unsigned int b = 0; b < conditions.size(); ++b)
-        peak[b] = std::max(peak[b], magnitude(b));
-      auto &summary = get_summary();
-      for (unsigned int b = 0; b < conditions.size(); ++b)
-        summary.peak_reaction = std::max(summary.peak_reaction, magnitude(b));
     }
 
     std::vector<HistoryFile *> history_files() override

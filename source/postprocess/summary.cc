@@ -7,7 +7,7 @@
  * 'quantity,value' with the units in the names; written under a temporary
  * name and renamed, so a reader never sees half a file.
  */
-#include <anvil/boundary_conditions/boundary_condition.h>
+#include <anvil/boundary_conditions/constraints.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/element/element_group.h>
 #include <anvil/simulator/force_contributor.h>
@@ -27,10 +27,10 @@ namespace anvil::Postprocess
   public:
     using Interface::Interface;
 
-    /** The figures the probes and the reactions keep in the run's summary. */
+    /** The figures the probes keep in the run's summary. */
     std::vector<std::string> run_after() const override
     {
-      return {"probes", "reactions"};
+      return {"probes"};
     }
 
     void end_of_run(const double wall_time) override
@@ -61,8 +61,9 @@ namespace anvil::Postprocess
         return;
       const auto &summary             = get_summary();
       const auto &energies            = get_energies();
-      const auto &boundary_conditions = get_boundary_conditions();
-      const auto &peak_bc_reaction    = get_peak_bc_reaction();
+      const auto &constraints         = get_constraints();
+      const auto &boundary_conditions = constraints.get_conditions();
+      const auto &peak_bc_reaction    = constraints.peak_reactions();
       record_output("summary.csv");
       std::ostringstream out;
       {
@@ -106,11 +107,11 @@ namespace anvil::Postprocess
         for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
           out << "peak_reaction_" << boundary_conditions[b].name << "_N," << peak_bc_reaction[b] << '\n';
         for (unsigned int b = 0; b < boundary_conditions.size() && b < peak_bc_reaction.size(); ++b)
-          if (boundary_conditions[b].name == get_capacity_support())
+          if (boundary_conditions[b].name == constraints.capacity_support())
             {
               out << "axial_capacity_N," << peak_bc_reaction[b] << '\n';
-              if (get_intact_capacity() > 0)
-                out << "damage_index," << 1. - peak_bc_reaction[b] / get_intact_capacity() << '\n';
+              if (constraints.intact_capacity() > 0)
+                out << "damage_index," << 1. - peak_bc_reaction[b] / constraints.intact_capacity() << '\n';
             }
         out << "initial_energy_J," << get_initial_energy() << '\n';
         out << "final_kinetic_energy_J," << energies.kinetic << '\n';
@@ -120,7 +121,7 @@ namespace anvil::Postprocess
         out << "internal_energy_J," << energies.internal << '\n';
         out << "hourglass_energy_J," << energies.hourglass << '\n';
         out << "viscous_energy_J," << energies.viscous << '\n';
-        if (has_mass_damping() || energies.damping != 0)
+        if (constraints.damps() || energies.damping != 0)
           out << "damping_energy_J," << energies.damping << '\n';
         if (energies.removed != 0)
           out << "removed_energy_J," << energies.removed << '\n';

@@ -121,9 +121,7 @@ namespace anvil
     ar &position &velocity &force &mass &good_position &good_velocity &good_time;
     ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
       &step_change_steps &current_dt &step_number &time &growth_steps &negative_steps &first_dt &output_count
-          &summary &loop &peak_bc_reaction &stage_start &damping_force_old;
-    // (The prescribed velocities are the scene's, not state: a new stage may change them.)
-    ar &constrained_reaction &constrained_velocity_old &bc_reaction;
+          &summary &loop &stage_start;
 
     struct Part
     {
@@ -369,7 +367,8 @@ namespace anvil
         // here; the energies (and the balance) continue.
         remove_inactive_bodies(true);
         summary = RunSummary();
-        std::fill(peak_bc_reaction.begin(), peak_bc_reaction.end(), 0.);
+        for (auto *family : contributors())
+          family->start_stage();
         for (auto &postprocessor : postprocessors)
           postprocessor->start_stage();
         output_count       = 0;

@@ -15,16 +15,18 @@ namespace anvil
 
   // @sect3{Histories}
   //
-  // Every postprocessor's row (energy.csv, momentum.csv, probes,
-  // reactions, erosion: source/postprocess/), then the families' own
-  // (contact_NAME.csv, rigid_NAME.csv, rebar_NAME.csv). Rank 0 writes.
+  // The families reduce what their rows need (the reactions' sums among
+  // them, which reactions.csv reads); every postprocessor's row (energy.csv,
+  // momentum.csv, probes, reactions, erosion: source/postprocess/), then the
+  // families' own (contact_NAME.csv, rigid_NAME.csv, rebar_NAME.csv). Rank 0
+  // writes.
   void Simulator::write_history(const double t, const double dt)
   {
-    for (auto &postprocessor : postprocessors)
-      postprocessor->execute(t, dt);
     for (auto *family : contributors())
       if (!family->empty())
         family->prepare_history();
+    for (auto &postprocessor : postprocessors)
+      postprocessor->execute(t, dt);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     for (auto *family : contributors())

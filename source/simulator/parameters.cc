@@ -775,7 +775,6 @@ namespace anvil
         summary_subjects.pair =
           summary_pair.empty() ? 0 : index_of("Summary contact pair", summary_pair, pair_names, "Contact pairs");
         duration                   = prm.get_double("Duration");
-        mass_damping               = prm.get_double("Mass damping");
         const auto inactive_names  = names(prm.get("Inactive bodies"));
         {
           const std::string expression = prm.get("Maximum time step");
@@ -823,11 +822,6 @@ namespace anvil
         history_interval = prm.get_double("History interval");
         energy_tolerance = prm.get_double("Energy balance tolerance");
         min_dt_ratio     = prm.get_double("Minimum time step ratio");
-        {
-          const auto g = dealii::Utilities::split_string_list(prm.get("Gravity"));
-          for (unsigned int d = 0; d < 3; ++d)
-            gravity[d] = dealii::Utilities::string_to_double(g[d]);
-        }
         print_wall_times = prm.get_bool("Print wall times");
         progress_interval = prm.get_double("Progress interval");
         make_plots       = prm.get_bool("Plots");
@@ -836,12 +830,6 @@ namespace anvil
         checkpoint_interval      = prm.get_double("Checkpoint interval");
         checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         checkpoint_at_end        = prm.get_bool("Checkpoint at end");
-        capacity_support         = prm.get("Capacity support");
-        intact_capacity          = prm.get_double("Intact axial capacity");
-        if (!capacity_support.empty() &&
-            std::find(bc_names.begin(), bc_names.end(), capacity_support) == bc_names.end())
-          throw InputError("entry 'Simulation/Capacity support': '" + capacity_support +
-                           "' is not in 'Boundary conditions' (" + join(bc_names) + ")");
         prm.leave_subsection();
         if (time_step_factor <= 0)
           throw InputError("entry 'Simulation/Time step safety factor' must "
@@ -877,20 +865,8 @@ namespace anvil
         for (const auto &body : bodies)
           if (!body.refinement_near_body().empty())
             check_body(body.refinement_near_body(), "Body " + body.name + "/Refinement region");
-        boundary_conditions.resize(bc_names.size());
-        for (unsigned int i = 0; i < bc_names.size(); ++i)
-          {
-            prm.enter_subsection("Boundary condition " + bc_names[i]);
-            boundary_conditions[i].parse_parameters(prm, bc_names[i]);
-            prm.leave_subsection();
-            check_body(boundary_conditions[i].body,
-                       "Boundary condition " + bc_names[i]);
-            for (const auto &b : bodies)
-              if (b.name == boundary_conditions[i].body && b.is_rigid())
-                throw InputError("subsection 'Boundary condition " + bc_names[i] + "': body '" +
-                                 b.name + "' is rigid; hold it with 'Rigid body/Motion' and "
-                                 "'Rigid body/Constraints' instead");
-          }
+        auto constraints_and_loads = std::make_unique<ConstraintsAndLoads>(*this, velocity);
+        constraints_and_loads->parse_parameters(prm, bc_names, bodies);
         std::vector<std::unique_ptr<Contact::Algorithm>> pairs;
         std::vector<unsigned char>                        pair_inactive;
         for (unsigned int i = 0; i < pair_names.size(); ++i)
@@ -923,6 +899,8 @@ namespace anvil
           std::make_unique<RigidBody::RigidBodies>(*this, fe, velocity, rigid_dof, body_inactive));
         rigid_bodies = static_cast<RigidBody::RigidBodies *>(families.back().get());
         families.push_back(std::make_unique<Rebar::Reinforcement>(*this, std::move(rebar_layouts)));
+        constraints = constraints_and_loads.get();
+        families.push_back(std::move(constraints_and_loads));
         contact = std::make_unique<Contact::ContactPairs>(*this, std::move(pairs), std::move(pair_inactive),
                                                           *rigid_bodies);
         all_families = {solids.get()};

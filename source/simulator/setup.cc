@@ -92,9 +92,7 @@ namespace anvil
           pcout << "Warning: body '" << bodies[b].name << "': " << names.note << std::endl;
         if (!names.info.empty())
           pcout << "Body '" << bodies[b].name << "': " << names.info << std::endl;
-        for (auto &bc : boundary_conditions)
-          if (bc.body == bodies[b].name)
-            bc.resolve_names(names);
+        constraints->resolve_names(bodies[b].name, names);
         for (auto &probe : probes)
           if (probe.body == bodies[b].name && !probe.node_set.empty())
             {
@@ -367,7 +365,6 @@ namespace anvil
     for (auto *family : contributors())
       family->setup();
     assemble_lumped_mass();
-    setup_boundary_conditions();
     for (auto *family : contributors())
       family->initialize();
     setup_probes();
@@ -431,65 +428,6 @@ namespace anvil
 
 
   // @sect3{Boundary conditions}
-  void Simulator::setup_boundary_conditions()
-  {
-    std::map<types::global_dof_index, double>       prescribed;
-    std::map<types::global_dof_index, unsigned int> prescribed_by;
-    std::vector<unsigned int>                 matched(boundary_conditions.size(), 0);
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        for (unsigned int v = 0; v < 8; ++v)
-          {
-            std::vector<unsigned int> ids;
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary())
-                for (unsigned int fv = 0; fv < 4; ++fv)
-                  if (GeometryInfo<3>::face_to_cell_vertices(f, fv) == v)
-                    ids.push_back(cell->face(f)->boundary_id());
-            for (unsigned int k = 0; k < boundary_conditions.size(); ++k)
-              {
-                const auto &bc = boundary_conditions[k];
-                if (!bc.selects(bodies[cell->material_id()].name, cell->vertex(v), ids))
-                  continue;
-                for (unsigned int c = 0; c < 3; ++c)
-                  if (bc.components[c])
-                    {
-                      const auto dof = cell->vertex_dof_index(v, c);
-                      if (dof_handler.locally_owned_dofs().is_element(dof))
-                        {
-                          prescribed[dof]    = bc.velocity[c];
-                          prescribed_by[dof] = k;
-                          ++matched[k];
-                        }
-                    }
-              }
-          }
-    for (unsigned int k = 0; k < boundary_conditions.size(); ++k)
-      if (Utilities::MPI::sum(matched[k], mpi_communicator) == 0)
-        throw InputError(scene_file + ": subsection 'Boundary condition " +
-                         boundary_conditions[k].name +
-                         "' selects no node of body '" +
-                         boundary_conditions[k].body + "'");
-    constrained_dofs.clear();
-    constrained_velocity.clear();
-    constrained_bc.clear();
-    for (const auto &[dof, value] : prescribed)
-      {
-        constrained_dofs.push_back(position.get_partitioner()->global_to_local(dof));
-        constrained_velocity.push_back(value);
-        constrained_bc.push_back(3 * prescribed_by[dof] + dof_component[constrained_dofs.back()]);
-        velocity(dof) = value;
-      }
-    held_index.assign(position.locally_owned_size(), 0);
-    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
-      held_index[constrained_dofs[k]] = k + 1;
-    constrained_reaction.assign(constrained_dofs.size(), 0.);
-    bc_reaction.assign(3 * boundary_conditions.size(), 0.);
-    constrained_velocity_old.assign(constrained_dofs.size(), 0.);
-  }
-
-
   // @sect3{Probes}
   void Simulator::setup_probes()
   {
@@ -624,8 +562,6 @@ namespace anvil
     s << solids->describe() << "; " << contact->describe();
     for (const auto &family : families)
       s << "; " << family->describe();
-    s << "; " << (mass_damping > 0 ? "mass damping" : "no mass damping") << "; "
-      << (gravity.norm() > 0 ? "gravity" : "no gravity");
     return s.str();
   }
 } // namespace anvil

@@ -63,7 +63,7 @@ namespace anvil
 
   const dealii::Tensor<1, 3> &SimulatorAccess::get_gravity() const
   {
-    return simulator.gravity;
+    return simulator.constraints->get_gravity();
   }
 
   const dealii::parallel::fullydistributed::Triangulation<3> &SimulatorAccess::get_triangulation() const
@@ -182,41 +182,9 @@ namespace anvil
     simulator.record_probe_summary(probe_values);
   }
 
-  const std::vector<BoundaryCondition> &SimulatorAccess::get_boundary_conditions() const
+  const ConstraintsAndLoads &SimulatorAccess::get_constraints() const
   {
-    return simulator.boundary_conditions;
-  }
-
-  const std::vector<double> &SimulatorAccess::get_bc_reaction() const
-  {
-    return simulator.bc_reaction;
-  }
-
-  std::vector<double> &SimulatorAccess::get_peak_bc_reaction() const
-  {
-    return simulator.peak_bc_reaction;
-  }
-
-  const std::string &SimulatorAccess::get_capacity_support() const
-  {
-    return simulator.capacity_support;
-  }
-
-  double SimulatorAccess::get_intact_capacity() const
-  {
-    return simulator.intact_capacity;
-  }
-
-  bool SimulatorAccess::has_mass_damping() const
-  {
-    return simulator.mass_damping > 0;
-  }
-
-  double SimulatorAccess::damping_force(const unsigned int i) const
-  {
-    return simulator.mass_damping > 0 && i < simulator.damping_force_old.size() ?
-             simulator.damping_force_old[i] :
-             0.;
+    return *simulator.constraints;
   }
 
   const std::vector<unsigned char> &SimulatorAccess::get_dof_body() const
@@ -235,30 +203,21 @@ namespace anvil
   }
 
 
-  const std::vector<unsigned int> &SimulatorAccess::get_constrained_dofs() const
-  {
-    return simulator.constrained_dofs;
-  }
-
-
   bool SimulatorAccess::is_held(const unsigned int i) const
   {
-    return i < simulator.held_index.size() && simulator.held_index[i] > 0;
+    return simulator.constraints->is_held(i);
   }
 
   double SimulatorAccess::velocity_at_n(const unsigned int i, const double dt) const
   {
-    if (is_held(i))
-      return simulator.constrained_velocity[simulator.held_index[i] - 1];
+    const auto &constraints = *simulator.constraints;
+    if (constraints.is_held(i))
+      return constraints.held_velocity(i);
     const double v = simulator.velocity.local_element(i);
     if (simulator.hanging.is_hanging(i))
       return v;
-    return v - 0.5 * dt * (simulator.force.local_element(i) + damping_force(i)) / simulator.mass.local_element(i);
-  }
-
-  const std::vector<double> &SimulatorAccess::get_constrained_velocity() const
-  {
-    return simulator.constrained_velocity;
+    return v - 0.5 * dt * (simulator.force.local_element(i) + constraints.damping_force(i)) /
+                 simulator.mass.local_element(i);
   }
 
   const std::vector<unsigned int> &SimulatorAccess::get_group_body() const

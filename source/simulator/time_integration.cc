@@ -33,12 +33,8 @@ namespace anvil
               force.begin() + force.locally_owned_size() +
                 force.get_partitioner()->n_ghost_indices(),
               0.);
-    // Gravity: the lumped body force m_I g on every owned dof.
-    // (Rigid bodies take M g at their centre: RigidBodies::update_velocity.)
-    if (gravity.norm() > 0)
-      for (unsigned int i = 0; i < force.locally_owned_size(); ++i)
-        if (rigid_dof.empty() || !rigid_dof[i])
-          force.local_element(i) = mass.local_element(i) * gravity[dof_component[i]];
+    // The body forces of the loads (gravity) start the sum.
+    constraints->set_body_forces(force);
   }
 
 
@@ -138,49 +134,12 @@ namespace anvil
     const double      *m      = mass.begin();
     // sum_i v^{n-1/2} (m v^{n-1/2} + dt^{n-1/2} F^n) and sum_i F^n dv.
     double kinetic = 0, power = 0;
-    // The velocities v^{n-1/2} of the constrained dofs, before the update.
-    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
-      constrained_velocity_old[k] = v[constrained_dofs[k]];
-    if (mass_damping > 0)
-      {
-        // Mass-proportional damping, centred: F_d^n = -alpha m (v^{n-1/2} +
-        // v^{n+1/2}) / 2 joins F^n, so v^{n+1/2} solves (1 + a) v^{n+1/2} =
-        // (1 - a) v^{n-1/2} + dt_avg f / m with a = alpha dt_avg / 2
-        // (unconditionally stable in the damping); its work over the step
-        // just made is booked by the trapezoid, -(F_d^{n-1} + F_d^n)/2 .
-        // v^{n-1/2} dt^{n-1/2}, as the elements book theirs.
-        // Constrained dofs are not damped (a constrained dof's damping
-        // would be part of its reaction); rigid dofs are the bodies' own.
-        if (damping_force_old.size() != n)
-          damping_force_old.assign(n, 0.);
-        if (damped_dof.size() != n)
-          {
-            damped_dof.assign(n, 1);
-            for (const unsigned int i : constrained_dofs)
-              damped_dof[i] = 0;
-            for (unsigned int i = 0; i < n; ++i)
-              if (!moved_dof.empty() && moved_dof[i])
-                damped_dof[i] = 2;
-          }
-        double absorbed = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          if (damped_dof[i] != 2)
-            {
-              // (alpha = 0: the undamped update, to the bit.)
-              const double alpha = damped_dof[i] ? mass_damping : 0.;
-              const double a     = 0.5 * alpha * dt_avg;
-              const double v_old = v[i];
-              const double v_new = ((1. - a) * v_old + dt_avg * f[i] / m[i]) / (1. + a);
-              const double fd    = -0.5 * alpha * m[i] * (v_old + v_new);
-              const double ft    = f[i] + fd;
-              absorbed -= 0.5 * (damping_force_old[i] + fd) * v_old * dt_previous;
-              damping_force_old[i] = fd;
-              v[i]                 = v_new;
-              kinetic += v_old * (m[i] * v_old + dt_previous * ft);
-              power += ft * (v_new - v_old);
-            }
-        energies.damping += Utilities::MPI::sum(absorbed, mpi_communicator);
-      }
+    // The held dofs' v^{n-1/2} (and their prescribed velocities of
+    // t^{n+1/2}); the free dofs' update, damped or not; the held ones back
+    // to their prescribed velocities by their reactions.
+    constraints->begin_velocity_update(v, time, dt);
+    if (constraints->damps())
+      constraints->damped_velocity_update(dt_previous, dt_avg, f, m, v, moved_dof, kinetic, power);
     else if (moved_dof.empty())
       for (unsigned int i = 0; i < n; ++i)
         {
@@ -201,23 +160,7 @@ namespace anvil
             power += f[i] * dv;
           }
     double work = 0;
-    std::fill(bc_reaction.begin(), bc_reaction.end(), 0.);
-    for (unsigned int k = 0; k < constrained_dofs.size(); ++k)
-      {
-        const unsigned int i     = constrained_dofs[k];
-        const double       v_old = constrained_velocity_old[k];
-        // Reaction R^n = M (v_prescribed - v_free) / dt_avg: it joins f in
-        // K^n, and does the work (R^{n-1} + R^n)/2 v^{n-1/2} dt^{n-1/2}.
-        const double reaction =
-          dt_avg > 0 ? m[i] * (constrained_velocity[k] - v[i]) / dt_avg : 0.;
-        kinetic += v_old * dt_previous * reaction;
-        work += 0.5 * (constrained_reaction[k] + reaction) * v_old * dt_previous;
-        // F^n dv with F^n = f + R and dv = v_prescribed - v_old.
-        power += (f[i] + reaction) * (constrained_velocity[k] - v_old) - f[i] * (v[i] - v_old);
-        constrained_reaction[k] = reaction;
-        bc_reaction[constrained_bc[k]] += reaction;
-        v[i]                    = constrained_velocity[k];
-      }
+    constraints->impose(dt_previous, dt_avg, f, m, v, kinetic, work, power);
     std::vector<double> sums = {kinetic, work, power};
     Utilities::MPI::sum(sums, mpi_communicator, sums);
     OwnMotion own;
@@ -253,19 +196,11 @@ namespace anvil
       x[i] += dt * v[i];
     if (!hanging.empty())
       hanging.assign(x, n, hanging_position);
+    // (The families' own nodes; the loads book the work of gravity, m g .
+    // (x^{n+1} - x^n).)
     for (auto &family : families)
       if (!family->empty())
         family->update_position(dt);
-    // Work of gravity over the step, m g . (x^{n+1} - x^n): exact for a
-    // constant force.
-    if (gravity.norm() > 0)
-      {
-        double work = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          if (rigid_dof.empty() || !rigid_dof[i])
-            work += mass.local_element(i) * gravity[dof_component[i]] * dt * v[i];
-        energies.external_work += Utilities::MPI::sum(work, mpi_communicator);
-      }
   }
 
 

@@ -1,15 +1,19 @@
 /**
  * @file
- * Kinematic boundary conditions: fixed or prescribed velocity on the nodes
- * of named boundary ids, surfaces or node sets of a mesh file, or inside a
- * box.
+ * Kinematic boundary conditions: the nodes of named boundary ids, surfaces
+ * or node sets of a mesh file, or inside a box, whose chosen velocity
+ * components follow the boundary-condition plugin 'Type' names (fixed, a
+ * constant velocity, a velocity function of t, or a plugin's).
  */
 #pragma once
+
+#include <anvil/boundary_conditions/interface.h>
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,12 +39,25 @@ namespace anvil
                  const dealii::Point<3>                 &X,
                  const std::vector<unsigned int>        &ids) const;
 
+    /** The prescribed velocity at time @p t. */
+    dealii::Tensor<1, 3> velocity(const double t) const
+    {
+      return motion->velocity(t);
+    }
+
+    /** Whether it changes in time (BoundaryConditions::Interface). */
+    bool time_dependent() const
+    {
+      return motion->time_dependent();
+    }
+
     std::string            name;
     std::string            body;
     std::array<bool, 3>    components = {{true, true, true}};
-    dealii::Tensor<1, 3>   velocity;
 
   private:
+    /** The plugin 'Type' names. */
+    std::shared_ptr<const BoundaryConditions::Interface> motion;
     bool                      by_box = false, by_node_set = false;
     /** Names of surfaces or node sets, until resolve_names. */
     std::vector<std::string>  names;

@@ -110,6 +110,11 @@ namespace anvil
       (void)out;
     }
 
+    /** A new stage starts from a checkpoint: figures kept for the stage's
+        summary (peaks) start afresh. */
+    virtual void start_stage()
+    {}
+
     /** Before a history row, on every process: reduce what rank 0's
         write_history() needs from the others (collective). */
     virtual void prepare_history()

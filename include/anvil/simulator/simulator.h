@@ -5,7 +5,7 @@
  */
 #pragma once
 
-#include <anvil/boundary_conditions/boundary_condition.h>
+#include <anvil/boundary_conditions/constraints.h>
 #include <anvil/contact/contact_pairs.h>
 #include <anvil/element/element_group.h>
 #include <anvil/element/solid_bodies.h>
@@ -157,7 +157,7 @@ namespace anvil
         their masters (nothing without local refinement). */
     void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 8;
+    static constexpr int checkpoint_layout = 9;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
@@ -170,7 +170,6 @@ namespace anvil
     static constexpr unsigned int full_integration_weight = 15000;
     void setup_system();
     void assemble_lumped_mass();
-    void setup_boundary_conditions();
     void setup_probes();
     /** At the start of a run and in --check: the elements with the
         smallest stable steps and a warning for distorted ones (scaled
@@ -207,13 +206,6 @@ namespace anvil
         is deleted, the run's file list is read back. */
     void resume_output_directory();
     bool      checkpoint_at_end = false;
-    /** Capacity: the boundary condition whose peak reaction summary.csv
-        reports as axial_capacity_N, and the intact member's capacity for
-        damage_index = 1 - capacity / intact (0: none). */
-    std::string capacity_support;
-    double      intact_capacity = 0;
-    /** Per boundary condition, the largest reaction magnitude so far. */
-    std::vector<double> peak_bc_reaction;
     /** The loop's own schedule (what the step, outputs and end criterion
         have reached). */
     struct LoopState
@@ -303,12 +295,6 @@ namespace anvil
         duration; 0: at 'End time'. */
     double      duration    = 0;
     double      stage_start = 0;
-    /** Mass-proportional damping F = -alpha M v of the deformable nodes
-        (1/s; 0: none), and each owned dof's damping force of the last
-        step (for the trapezoidal work, as the elements book theirs). */
-    double              mass_damping = 0;
-    std::vector<double> damping_force_old;
-    std::vector<unsigned char> damped_dof;
     /** 'Inactive bodies': per body, whether it is out of the analysis
         (rigid bodies only: held still, their contact pairs skipped). */
     std::vector<unsigned char> body_inactive;
@@ -320,8 +306,6 @@ namespace anvil
         t when the entry names t. */
     double                                     max_dt_constant = 0;
     std::unique_ptr<dealii::FunctionParser<1>> max_dt_function;
-    /** Gravitational acceleration of the scene (body force rho g). */
-    dealii::Tensor<1, 3> gravity;
     bool        overwrite_output;
     bool        print_wall_times = false;
     /** Wall time between progress lines (0: every 10 % of the end time). */
@@ -336,7 +320,6 @@ namespace anvil
     unsigned int max_steps;
 
     std::vector<Body>                     bodies;
-    std::vector<BoundaryCondition>        boundary_conditions;
     std::vector<Probe>                    probes;
     /** The families that add forces beside the element groups and the
         contact pairs, in the order the step calls them (the rigid bodies,
@@ -384,19 +367,10 @@ namespace anvil
         it the reactions of analytic shapes. */
     RigidBody::RigidBodies *rigid_bodies = nullptr;
 
-    /** Constrained dofs (local indices) and their prescribed velocities. */
-    std::vector<unsigned int> constrained_dofs;
-    std::vector<double>       constrained_velocity;
-    /** Per owned dof: k + 1 for constrained_dofs[k], 0 where free. */
-    std::vector<unsigned int> held_index;
-    /** Per constrained dof: the reaction of the last step (for the
-        trapezoidal reaction work) and v^{n-1/2} during the update. */
-    std::vector<double>       constrained_reaction, constrained_velocity_old;
-    /** Per constrained dof: 3 (boundary condition) + component; and the
-        owned part of each condition's reaction force this step (the force
-        the support exerts on the body). */
-    std::vector<unsigned int> constrained_bc;
-    std::vector<double>       bc_reaction;
+    /** The kinematic constraints and loads (one of 'families', the last:
+        boundary conditions, mass damping, gravity), called at three
+        points of the velocity update. */
+    ConstraintsAndLoads *constraints = nullptr;
 
     /** The contact pairs: a family of their own, evaluated after the
         element forces and erosion (apply_contact). */

@@ -30,6 +30,7 @@ namespace anvil
   struct Probe;
   class Body;
   class BoundaryCondition;
+  class ConstraintsAndLoads;
   class ForceContributor;
   namespace Element
   {
@@ -103,26 +104,14 @@ namespace anvil
     /** On rank 0, at each history row: the first probe's displacement for
         the summary and the end criterion. */
     void               record_probe_summary(const std::vector<double> &probe_values) const;
-    const std::vector<BoundaryCondition> &get_boundary_conditions() const;
-    /** This process's part of each condition's reaction (3 per condition),
-        and the largest magnitudes so far (rank 0). */
-    const std::vector<double> &get_bc_reaction() const;
-    std::vector<double>       &get_peak_bc_reaction() const;
-    /** 'Capacity support' and the intact member's capacity (damage index). */
-    const std::string         &get_capacity_support() const;
-    double                     get_intact_capacity() const;
-    /** Mass-proportional damping: whether the scene has it, and its force
-        on the owned dof @p i this step. */
-    bool                       has_mass_damping() const;
-    double                     damping_force(unsigned int i) const;
+    /** The kinematic constraints and loads: the boundary conditions,
+        their held dofs and reactions, mass damping, gravity. */
+    const ConstraintsAndLoads &get_constraints() const;
     /** Per owned dof: its body and component, and whether a rigid body's
         (empty: no rigid bodies). */
     const std::vector<unsigned char> &get_dof_body() const;
     const std::vector<unsigned char> &get_dof_component() const;
     const std::vector<unsigned char> &get_rigid_dof() const;
-    /** The constrained dofs (local indices of owned dofs) and the
-        velocities they are held at. */
-    const std::vector<unsigned int> &get_constrained_dofs() const;
     /** The velocity of the owned dof @p i at the integer time n, the last
         step @p dt after the half step: v^{n+1/2} - dt/2 a^n with the mass
         damping's force part of a^n; a constrained dof's prescribed
@@ -131,7 +120,6 @@ namespace anvil
     double velocity_at_n(unsigned int i, double dt) const;
     /** Whether the owned dof @p i is held by a boundary condition. */
     bool   is_held(unsigned int i) const;
-    const std::vector<double>       &get_constrained_velocity() const;
     /** The body of each element group. */
     const std::vector<unsigned int> &get_group_body() const;
     const dealii::FESystem<3>        &get_fe() const;
