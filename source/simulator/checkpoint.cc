@@ -190,7 +190,7 @@ namespace anvil
   {
     TimerOutput::Scope t(*timer, "checkpoint");
     const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const std::string  dir  = output_directory + "/checkpoint";
+    const std::string  dir  = parameters.output_directory + "/checkpoint";
     // The histories first: the checkpoint records how long they are.
     flush_histories();
     if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
@@ -259,11 +259,11 @@ namespace anvil
 
   void Simulator::resume_output_directory()
   {
-    check_checkpoint(output_directory + "/checkpoint");
+    check_checkpoint(parameters.output_directory + "/checkpoint");
     // The files this run's first part wrote stay on the list.
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
-        std::ifstream list(output_directory + "/anvil_files.txt");
+        std::ifstream list(parameters.output_directory + "/anvil_files.txt");
         std::string   name;
         while (std::getline(list, name))
           if (!name.empty())
@@ -292,15 +292,15 @@ namespace anvil
             layout = std::atoi(value.c_str());
       }
     if (n < 0)
-      throw InputError(scene_file + ": --resume: no checkpoint in '" + dir +
+      throw InputError(parameters.scene_file + ": --resume: no checkpoint in '" + dir +
                        "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
     if (layout != checkpoint_layout)
-      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' has state layout " +
+      throw InputError(parameters.scene_file + ": --resume: the checkpoint in '" + dir + "' has state layout " +
                        std::to_string(layout) + " (written by an earlier Anvil, whose state was laid " +
                        "out otherwise); this build reads layout " + std::to_string(checkpoint_layout) +
                        ": run the scene again from its start");
     if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
-      throw InputError(scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
+      throw InputError(parameters.scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
                        std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));
   }
 
@@ -314,11 +314,11 @@ namespace anvil
     data << in.rdbuf();
     int bad = in ? 0 : 1;
     if (Utilities::MPI::max(bad, mpi_communicator) != 0)
-      throw InputError(scene_file + ": --resume: cannot read " + file);
+      throw InputError(parameters.scene_file + ": --resume: cannot read " + file);
     std::string       damage;
     const std::string state = without_trailer(data.str(), damage);
     if (Utilities::MPI::max(damage.empty() ? 0 : 1, mpi_communicator) != 0)
-      throw InputError(scene_file + ": --resume: the checkpoint file " +
+      throw InputError(parameters.scene_file + ": --resume: the checkpoint file " +
                        (damage.empty() ? std::string("of another rank") : file) + " is refused: " +
                        (damage.empty() ? std::string("it is damaged") : damage) +
                        " (run the scene again from its start, or from an intact checkpoint)");
@@ -346,12 +346,12 @@ namespace anvil
         failure = e.what();
       }
     if (Utilities::MPI::max(mismatch, mpi_communicator) != 0)
-      throw InputError(scene_file + ": --resume: the checkpoint in '" + directory +
+      throw InputError(parameters.scene_file + ": --resume: the checkpoint in '" + directory +
                        "' was written by another version of Anvil (" +
                        (failure.empty() ? std::string("on another rank") : failure) +
                        "): run the scene again from its start");
     if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
-      throw InputError(scene_file + ": --resume: the checkpoint does not fit this scene (" +
+      throw InputError(parameters.scene_file + ": --resume: the checkpoint does not fit this scene (" +
                        (failure.empty() ? std::string("on another rank") : failure) +
                        "); was the scene changed since it was written?");
     position.update_ghost_values();
@@ -359,8 +359,8 @@ namespace anvil
     mass.update_ghost_values();
     if (new_stage)
       stage_start = time;
-    if (duration > 0)
-      end_time = stage_start + duration;
+    if (parameters.duration > 0)
+      parameters.end_time = stage_start + parameters.duration;
     if (new_stage)
       {
         // A stage of its own: its histories, frames and figures start
@@ -372,13 +372,13 @@ namespace anvil
         for (auto &postprocessor : postprocessors)
           postprocessor->start_stage();
         output_count       = 0;
-        loop.next_output   = time + output_interval;
+        loop.next_output   = time + parameters.output_interval;
         loop.next_history  = time;
         loop.next_progress = time;
         loop.quiet_end     = false;
         last_flush         = std::chrono::steady_clock::now();
         pcout << "  a new stage from the checkpoint in " << directory << " at t = " << time << " s, step "
-              << step_number << "; it ends at t = " << end_time << " s" << std::endl;
+              << step_number << "; it ends at t = " << parameters.end_time << " s" << std::endl;
         output_results(time, "solution");
         return;
       }
@@ -397,7 +397,7 @@ namespace anvil
         const auto files = history_files();
         for (unsigned int k = 0; k < files.size() && k < lengths.size(); ++k)
           if (lengths[k] >= 0)
-            files[k]->resume(output_directory + "/" + names[k], lengths[k]);
+            files[k]->resume(parameters.output_directory + "/" + names[k], lengths[k]);
       }
     last_flush = std::chrono::steady_clock::now();
     pcout << "  resumed from the checkpoint at t = " << time << " s, step " << step_number << std::endl;

@@ -87,10 +87,10 @@ namespace anvil
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !recorded_outputs.insert(name).second)
       return;
-    std::ofstream list(output_directory + "/anvil_files.txt", std::ios::app);
+    std::ofstream list(parameters.output_directory + "/anvil_files.txt", std::ios::app);
     list << name << '\n';
     list.flush();
     if (!list)
-      throw OutputError("cannot write " + output_directory + "/anvil_files.txt (the list of this run's files)");
+      throw OutputError("cannot write " + parameters.output_directory + "/anvil_files.txt (the list of this run's files)");
   }
 } // namespace anvil

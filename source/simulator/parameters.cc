@@ -729,10 +729,10 @@ namespace anvil
   void Simulator::parse_parameters(const std::string              &parameter_file,
                                    const std::vector<std::string> &overrides)
   {
-    scene_file = parameter_file;
+    parameters.scene_file = parameter_file;
     dealii::ParameterHandler prm;
-    deck_notes.clear();
-    const auto               lists       = read_scene(parameter_file, overrides, prm, &deck_notes);
+    parameters.deck_notes.clear();
+    const auto               lists       = read_scene(parameter_file, overrides, prm, &parameters.deck_notes);
     const auto              &body_names  = lists[0];
     const auto              &bc_names    = lists[1];
     const auto              &pair_names  = lists[2];
@@ -744,17 +744,17 @@ namespace anvil
     try
       {
         prm.enter_subsection("Simulation");
-        scene_name = prm.get("Name");
-        if (scene_name.empty())
-          scene_name = std::filesystem::path(parameter_file).stem().string();
-        output_directory = prm.get("Output directory") + "/" + scene_name;
-        overwrite_output = prm.get_bool("Overwrite existing output");
-        end_time         = prm.get_double("End time");
-        time_step_factor = prm.get_double("Time step safety factor");
-        max_steps        = prm.get_integer("Maximum number of steps");
-        end_criterion.kinetic_fraction       = prm.get_double("End kinetic energy fraction");
-        end_criterion.quiet_time             = prm.get_double("End quiet time");
-        end_criterion.kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
+        parameters.scene_name = prm.get("Name");
+        if (parameters.scene_name.empty())
+          parameters.scene_name = std::filesystem::path(parameter_file).stem().string();
+        parameters.output_directory = prm.get("Output directory") + "/" + parameters.scene_name;
+        parameters.overwrite_output = prm.get_bool("Overwrite existing output");
+        parameters.end_time         = prm.get_double("End time");
+        parameters.time_step_factor = prm.get_double("Time step safety factor");
+        parameters.max_steps        = prm.get_integer("Maximum number of steps");
+        parameters.end_criterion.kinetic_fraction       = prm.get_double("End kinetic energy fraction");
+        parameters.end_criterion.quiet_time             = prm.get_double("End quiet time");
+        parameters.end_criterion.kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
         // The pairs and the probe these entries name, by index.
         const auto index_of = [](const std::string &entry, const std::string &name,
                                  const std::vector<std::string> &names, const std::string &list) {
@@ -764,21 +764,21 @@ namespace anvil
                              (names.empty() ? std::string("none") : join(names)) + ")");
           return static_cast<unsigned int>(it - names.begin());
         };
-        end_criterion.pairs.clear();
+        parameters.end_criterion.pairs.clear();
         for (const auto &name : names(prm.get("End contact pairs")))
-          end_criterion.pairs.push_back(index_of("End contact pairs", name, pair_names, "Contact pairs"));
-        if (end_criterion.pairs.empty())
+          parameters.end_criterion.pairs.push_back(index_of("End contact pairs", name, pair_names, "Contact pairs"));
+        if (parameters.end_criterion.pairs.empty())
           for (unsigned int p = 0; p < pair_names.size(); ++p)
-            end_criterion.pairs.push_back(p);
+            parameters.end_criterion.pairs.push_back(p);
         const std::string summary_probe = prm.get("Summary probe"), summary_pair = prm.get("Summary contact pair");
-        summary_subjects.probe = summary_probe.empty() ? 0 : index_of("Summary probe", summary_probe, probe_names, "Probes");
-        summary_subjects.pair =
+        parameters.summary_subjects.probe = summary_probe.empty() ? 0 : index_of("Summary probe", summary_probe, probe_names, "Probes");
+        parameters.summary_subjects.pair =
           summary_pair.empty() ? 0 : index_of("Summary contact pair", summary_pair, pair_names, "Contact pairs");
-        duration                   = prm.get_double("Duration");
+        parameters.duration                   = prm.get_double("Duration");
         const auto inactive_names  = names(prm.get("Inactive bodies"));
         {
           const std::string expression = prm.get("Maximum time step");
-          max_dt_function = std::make_unique<dealii::FunctionParser<1>>(1);
+          parameters.max_dt_function = std::make_unique<dealii::FunctionParser<1>>(1);
           // muparser reads 'a, b' as a list of two results: a comma outside
           // parentheses is a typing slip ('1,2' for 1.2), not an expression.
           int depth = 0;
@@ -796,8 +796,8 @@ namespace anvil
           auto *const        cerr_buffer = std::cerr.rdbuf(quiet.rdbuf());
           try
             {
-              max_dt_function->initialize("t", expression, {});
-              const double probe = max_dt_function->value(dealii::Point<1>(0.));
+              parameters.max_dt_function->initialize("t", expression, {});
+              const double probe = parameters.max_dt_function->value(dealii::Point<1>(0.));
               if (!std::isfinite(probe))
                 throw std::runtime_error("not finite at t = 0");
               std::cerr.rdbuf(cerr_buffer);
@@ -805,8 +805,8 @@ namespace anvil
               // explicit step.
               if (expression.find('t') == std::string::npos)
                 {
-                  max_dt_constant = probe;
-                  max_dt_function.reset();
+                  parameters.max_dt_constant = probe;
+                  parameters.max_dt_function.reset();
                 }
             }
           catch (...)
@@ -818,20 +818,20 @@ namespace anvil
                                "for example 1e-7 or if(t < 0.01, 1e-7, 1e-6))");
             }
         }
-        output_interval  = prm.get_double("Output interval");
-        history_interval = prm.get_double("History interval");
-        energy_tolerance = prm.get_double("Energy balance tolerance");
-        min_dt_ratio     = prm.get_double("Minimum time step ratio");
-        print_wall_times = prm.get_bool("Print wall times");
-        progress_interval = prm.get_double("Progress interval");
-        make_plots       = prm.get_bool("Plots");
-        compress_output  = prm.get("Output compression") == "zlib";
-        partitioner      = prm.get("Partitioner");
-        checkpoint_interval      = prm.get_double("Checkpoint interval");
-        checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
-        checkpoint_at_end        = prm.get_bool("Checkpoint at end");
+        parameters.output_interval  = prm.get_double("Output interval");
+        parameters.history_interval = prm.get_double("History interval");
+        parameters.energy_tolerance = prm.get_double("Energy balance tolerance");
+        parameters.min_dt_ratio     = prm.get_double("Minimum time step ratio");
+        parameters.print_wall_times = prm.get_bool("Print wall times");
+        parameters.progress_interval = prm.get_double("Progress interval");
+        parameters.make_plots       = prm.get_bool("Plots");
+        parameters.compress_output  = prm.get("Output compression") == "zlib";
+        parameters.partitioner      = prm.get("Partitioner");
+        parameters.checkpoint_interval      = prm.get_double("Checkpoint interval");
+        parameters.checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
+        parameters.checkpoint_at_end        = prm.get_bool("Checkpoint at end");
         prm.leave_subsection();
-        if (time_step_factor <= 0)
+        if (parameters.time_step_factor <= 0)
           throw InputError("entry 'Simulation/Time step safety factor' must "
                            "be positive");
 

@@ -79,8 +79,8 @@ namespace anvil
     std::vector<Point<3>>    vertices;
     std::vector<CellData<3>> cells;
     SubCellData              boundary;
-    for (const auto &note : deck_notes)
-      pcout << "Warning: " << scene_file << ": " << note << std::endl;
+    for (const auto &note : parameters.deck_notes)
+      pcout << "Warning: " << parameters.scene_file << ": " << note << std::endl;
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         Triangulation<3> tria;
@@ -88,7 +88,7 @@ namespace anvil
         bodies[b].create_mesh(tria, &names);
         // A deck's translation has accounted for every keyword the mesh
         // reader passes over.
-        if (!names.note.empty() && !Deck::is_deck(scene_file))
+        if (!names.note.empty() && !Deck::is_deck(parameters.scene_file))
           pcout << "Warning: body '" << bodies[b].name << "': " << names.note << std::endl;
         if (!names.info.empty())
           pcout << "Body '" << bodies[b].name << "': " << names.info << std::endl;
@@ -265,13 +265,13 @@ namespace anvil
       }
     // A graph partitioner (METIS, Trilinos' Zoltan) on the cells' face
     // graph with the same weights.
-    if (n_ranks > 1 && partitioner != "hierarchical")
+    if (n_ranks > 1 && parameters.partitioner != "hierarchical")
       {
         const std::vector<unsigned int> cell_weight(weight.begin(), weight.end());
         GridTools::partition_triangulation(n_ranks,
                                            cell_weight,
                                            serial,
-                                           partitioner == "metis" ? SparsityTools::Partitioner::metis :
+                                           parameters.partitioner == "metis" ? SparsityTools::Partitioner::metis :
                                                                     SparsityTools::Partitioner::zoltan);
         return;
       }
@@ -376,7 +376,7 @@ namespace anvil
     setup();
     report_element_quality();
     prepare_output_directory(true);
-    pcout << scene_file << ": scene '" << scene_name << "' is valid: "
+    pcout << parameters.scene_file << ": scene '" << parameters.scene_name << "' is valid: "
           << bodies.size() << " bodies, " << triangulation.n_global_active_cells()
           << " elements, " << contact->n_pairs() << " contact pairs"
           << std::endl;
@@ -420,7 +420,7 @@ namespace anvil
   {
     if (hanging.empty())
       return;
-    StepSection t(*timer, print_wall_times, "time integration");
+    StepSection t(*timer, parameters.print_wall_times, "time integration");
     // Each hanging node's force is complete on its owner alone.
     force.update_ghost_values();
     hanging.condense(force.begin());
@@ -494,12 +494,12 @@ namespace anvil
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         namespace fs = std::filesystem;
-        const fs::path  dir  = output_directory;
+        const fs::path  dir  = parameters.output_directory;
         const fs::path  list = dir / "anvil_files.txt";
         std::error_code ec;
         if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
           status = 3;
-        else if ((fs::exists(list) || fs::exists(dir / "energy.csv")) && !overwrite_output)
+        else if ((fs::exists(list) || fs::exists(dir / "energy.csv")) && !parameters.overwrite_output)
           status = 1;
         else if (check_only)
           {
@@ -540,16 +540,16 @@ namespace anvil
       }
     status = Utilities::MPI::max(status, mpi_communicator);
     if (status == 1)
-      throw InputError(scene_file + ": results of an earlier run exist in '" +
-                       output_directory +
+      throw InputError(parameters.scene_file + ": results of an earlier run exist in '" +
+                       parameters.output_directory +
                        "'; set 'Overwrite existing output = true' in "
                        "subsection 'Simulation' or choose another 'Output "
                        "directory'");
     if (status == 2)
-      throw InputError(scene_file + ": cannot create or write the output directory '" +
-                       output_directory + "'" + (detail.empty() ? "" : ": " + detail));
+      throw InputError(parameters.scene_file + ": cannot create or write the output directory '" +
+                       parameters.output_directory + "'" + (detail.empty() ? "" : ": " + detail));
     if (status == 3)
-      throw InputError(scene_file + ": the output directory '" + output_directory +
+      throw InputError(parameters.scene_file + ": the output directory '" + parameters.output_directory +
                        "' is a file; choose another 'Output directory' or 'Name'");
   }
 

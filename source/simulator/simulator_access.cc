@@ -14,12 +14,12 @@ namespace anvil
 
   const std::string &SimulatorAccess::get_scene_file() const
   {
-    return simulator.scene_file;
+    return simulator.parameters.scene_file;
   }
 
   const std::string &SimulatorAccess::get_output_directory() const
   {
-    return simulator.output_directory;
+    return simulator.parameters.output_directory;
   }
 
   MPI_Comm SimulatorAccess::get_mpi_communicator() const
@@ -134,7 +134,7 @@ namespace anvil
 
   double SimulatorAccess::get_time_step_factor() const
   {
-    return simulator.time_step_factor;
+    return simulator.parameters.time_step_factor;
   }
 
   unsigned int SimulatorAccess::get_step_number() const
@@ -159,12 +159,12 @@ namespace anvil
 
   const std::string &SimulatorAccess::get_scene_name() const
   {
-    return simulator.scene_name;
+    return simulator.parameters.scene_name;
   }
 
   const SummarySubjects &SimulatorAccess::get_summary_subjects() const
   {
-    return simulator.summary_subjects;
+    return simulator.parameters.summary_subjects;
   }
 
   RunSummary &SimulatorAccess::get_summary() const
@@ -257,12 +257,12 @@ namespace anvil
 
   bool SimulatorAccess::plots_requested() const
   {
-    return simulator.make_plots;
+    return simulator.parameters.make_plots;
   }
 
   bool SimulatorAccess::output_compressed() const
   {
-    return simulator.compress_output;
+    return simulator.parameters.compress_output;
   }
 
   void SimulatorAccess::record_output(const std::string &name) const

@@ -49,7 +49,7 @@ namespace anvil
           summary.pair_contact_end[p] = t;
         }
 
-    const auto &end = end_criterion;
+    const auto &end = parameters.end_criterion;
     if (!end.asked())
       return false;
     bool in_contact = false;

@@ -50,7 +50,7 @@ namespace anvil
   // (the contact pairs).
   double Simulator::compute_internal_forces(const double dt_previous)
   {
-    StepSection t(*timer, print_wall_times, "element forces");
+    StepSection t(*timer, parameters.print_wall_times, "element forces");
     // (The clock only where the balance is recorded.)
     const auto start =
       record_element_balance ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
@@ -66,13 +66,13 @@ namespace anvil
     for (auto &family : families)
       if (!family->empty() && family->has_forces())
         {
-          StepSection section(*timer, print_wall_times, family->name());
+          StepSection section(*timer, parameters.print_wall_times, family->name());
           dt_crit = std::min(dt_crit, family->add_forces(dt_previous));
         }
     // The step's first collective: a process that finished its elements
     // early waits here (or at the bars' exchange), not in 'element forces',
     // whose minimum and maximum over the processes show the imbalance.
-    StepSection r(*timer, print_wall_times, "reductions");
+    StepSection r(*timer, parameters.print_wall_times, "reductions");
     const std::vector<unsigned long> eroded = solids->finish_forces();
     if (!eroded.empty())
       contact->deactivate_elements(eroded);
@@ -106,7 +106,7 @@ namespace anvil
   {
     if (contact->empty())
       return;
-    StepSection t(*timer, print_wall_times, "contact");
+    StepSection t(*timer, parameters.print_wall_times, "contact");
     contact->add_forces(dt_previous);
   }
 
@@ -118,7 +118,7 @@ namespace anvil
   {
     if (contact->empty() || !contact->has_kinematic())
       return false;
-    StepSection t(*timer, print_wall_times, "contact");
+    StepSection t(*timer, parameters.print_wall_times, "contact");
     contact->add_kinematic_forces(dt_previous, dt);
     return true;
   }
@@ -126,7 +126,7 @@ namespace anvil
 
   void Simulator::update_velocity(const double dt_previous, const double dt)
   {
-    StepSection t(*timer, print_wall_times, "time integration");
+    StepSection t(*timer, parameters.print_wall_times, "time integration");
     const double       dt_avg = 0.5 * (dt_previous + dt);
     const unsigned int n      = position.locally_owned_size();
     double            *v      = velocity.begin();
@@ -185,7 +185,7 @@ namespace anvil
 
   void Simulator::update_position(const double dt)
   {
-    StepSection t(*timer, print_wall_times, "time integration");
+    StepSection t(*timer, parameters.print_wall_times, "time integration");
     const unsigned int n = position.locally_owned_size();
     double            *x = position.begin();
     const double      *v = velocity.begin();
@@ -224,10 +224,10 @@ namespace anvil
     // histories (rank 0's files).
     // ... and, from rank 0's clock and every rank's signal handler, whether
     // a checkpoint is due and whether the run was asked to stop.
-    const bool wall_due = checkpoint_wall_interval > 0 &&
+    const bool wall_due = parameters.checkpoint_wall_interval > 0 &&
                           std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                                         last_checkpoint_wall)
-                              .count() >= checkpoint_wall_interval &&
+                              .count() >= parameters.checkpoint_wall_interval &&
                           Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     std::array<double, 4> flags{{double(solids->inverted_cell()),
                                  output_failure.empty() ? 0. : 1.,
@@ -251,7 +251,7 @@ namespace anvil
     // elements' own: a penalty factor out of all proportion (or an
     // overflow to infinity), which would otherwise take the step to zero
     // at once and the run nowhere.
-    const double dt_stable = dt_next / time_step_factor;
+    const double dt_stable = dt_next / parameters.time_step_factor;
     // Contact lost by pass-through (replicated results: no reduction).
     const auto &contact_results = contact->results();
     for (unsigned int p = 0; p < contact_results.size() && problem.empty(); ++p)
@@ -265,22 +265,22 @@ namespace anvil
                "raise the pair's 'Penalty scale factor' or lower 'Time step safety factor'";
           problem = s.str();
         }
-    if (problem.empty() && min_dt_ratio > 0 && !(dt_stable >= min_dt_ratio * critical_dt))
+    if (problem.empty() && parameters.min_dt_ratio > 0 && !(dt_stable >= parameters.min_dt_ratio * critical_dt))
       {
         std::ostringstream s;
         s << "the contact springs allow a stable time step of " << dt_stable << " s, "
           << dt_stable / critical_dt << " of the elements' " << critical_dt << " s (limit "
-          << min_dt_ratio
+          << parameters.min_dt_ratio
           << ", 'Minimum time step ratio'): lower the contact pairs' 'Penalty scale factor'";
         problem = s.str();
       }
     if (first_dt == 0)
       first_dt = dt_next;
-    if (problem.empty() && min_dt_ratio > 0 && dt_next < min_dt_ratio * first_dt)
+    if (problem.empty() && parameters.min_dt_ratio > 0 && dt_next < parameters.min_dt_ratio * first_dt)
       {
         std::ostringstream s;
         s << "the stable time step fell to " << dt_next << " s, " << dt_next / first_dt
-          << " of the first step's (limit " << min_dt_ratio
+          << " of the first step's (limit " << parameters.min_dt_ratio
           << ", 'Minimum time step ratio'): an element is collapsing";
         problem = s.str();
       }
@@ -298,11 +298,11 @@ namespace anvil
     // O(omega dt) error with which the leapfrog measures the energy of the
     // highest modes after a sudden start; an instability grows without
     // bound.
-    if ((e_total - initial_energy - energies.external_work) > energy_tolerance * scale)
+    if ((e_total - initial_energy - energies.external_work) > parameters.energy_tolerance * scale)
       ++growth_steps;
     else
       growth_steps = 0;
-    if (energies.internal < -energy_tolerance * scale)
+    if (energies.internal < -parameters.energy_tolerance * scale)
       ++negative_steps;
     else
       negative_steps = 0;
@@ -312,7 +312,7 @@ namespace anvil
         s << "the internal energy is negative, " << energies.internal << " J ("
           << 100. * energies.internal / scale
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far; limit "
-          << 100. * energy_tolerance
+          << 100. * parameters.energy_tolerance
           << " %, 'Energy balance tolerance'): a material returns more work than it took";
         problem = s.str();
       }
@@ -320,7 +320,7 @@ namespace anvil
     // not unconditionally stable even below the stable step of every single
     // step (a step that switches back and forth resonates with the mesh's
     // modes); the balance closes with this term, so it is checked itself.
-    if (-energies.step_change > energy_tolerance * scale)
+    if (-energies.step_change > parameters.energy_tolerance * scale)
       ++step_change_steps;
     else
       step_change_steps = 0;
@@ -330,10 +330,10 @@ namespace anvil
         s << "the changes of the time step created " << -energies.step_change << " J ("
           << -100. * energies.step_change / scale
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far; limit "
-          << 100. * energy_tolerance
+          << 100. * parameters.energy_tolerance
           << " %, 'Energy balance tolerance'): the explicit step is unstable, or a step that "
              "varies back and forth resonates with the mesh; lower 'Time step safety factor' (now "
-          << time_step_factor << ")";
+          << parameters.time_step_factor << ")";
         if (first_dt > 0 && dt_next < 0.5 * first_dt)
           s << "; the stable step has fallen to " << dt_next / first_dt
             << " of the first step's: an element is collapsing";
@@ -345,10 +345,10 @@ namespace anvil
         std::ostringstream s;
         s << "the total energy grew by " << 100. * balance_error
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far beyond the external work (limit "
-          << 100. * energy_tolerance
+          << 100. * parameters.energy_tolerance
           << " %, 'Energy balance tolerance'); the explicit step is unstable "
              "(time step safety factor "
-          << time_step_factor << ")";
+          << parameters.time_step_factor << ")";
         problem = s.str();
       }
     if (other_problem && growth_steps > 0)
@@ -357,7 +357,7 @@ namespace anvil
         s << "; the explicit step is unstable: the total energy had grown for " << growth_steps
           << " steps to " << 100. * balance_error
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far beyond the external work (time step safety factor "
-          << time_step_factor << ")";
+          << parameters.time_step_factor << ")";
         problem += s.str();
       }
     if (problem.empty())
@@ -425,7 +425,7 @@ namespace anvil
         << problem << "; at element " << long(info[4]) << " of body '"
         << bodies[int(info[3])].name << "' near (" << info[0] << ", " << info[1]
         << ", " << info[2] << "); last good state (t = " << good_time
-        << " s) written to " << output_directory << "/last_good.pvtu";
+        << " s) written to " << parameters.output_directory << "/last_good.pvtu";
     throw NumericalFailure(msg.str());
   }
 
@@ -460,10 +460,10 @@ namespace anvil
     apply_contact(0.);
     condense_forces();
     const double dt_stable = stable_time_step();
-    double       dt        = time_step_factor * dt_stable;
-    if (max_dt_constant > 0)
-      dt = std::min(dt, max_dt_constant);
-    const double       steps    = std::ceil(end_time / dt);
+    double       dt        = parameters.time_step_factor * dt_stable;
+    if (parameters.max_dt_constant > 0)
+      dt = std::min(dt, parameters.max_dt_constant);
+    const double       steps    = std::ceil(parameters.end_time / dt);
     const double       elements = triangulation.n_global_active_cells();
     const unsigned int samples  = 20;
     MPI_Barrier(mpi_communicator);
@@ -487,9 +487,9 @@ namespace anvil
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mpi_communicator);
     const double ns = 1e9 * wall / (samples * elements);
     const double estimate = ns * 1e-9 * steps * elements;
-    pcout << std::setprecision(3) << "cost of '" << scene_name << "': " << (unsigned long)elements
-          << " elements, stable step " << dt_stable << " s (safety factor " << time_step_factor
-          << ") -> " << (unsigned long)steps << " steps to 'End time' " << end_time << " s = "
+    pcout << std::setprecision(3) << "cost of '" << parameters.scene_name << "': " << (unsigned long)elements
+          << " elements, stable step " << dt_stable << " s (safety factor " << parameters.time_step_factor
+          << ") -> " << (unsigned long)steps << " steps to 'End time' " << parameters.end_time << " s = "
           << steps * elements << " element-cycles\n"
           << "  measured here: " << ns << " ns per element-cycle (the first " << samples << " steps, "
           << Utilities::MPI::n_mpi_processes(mpi_communicator) << " process(es)) -> about " << estimate
@@ -550,7 +550,7 @@ namespace anvil
     // waiting. The summary is rank 0's; on more processes the minimum,
     // average and maximum over the ranks follow it.
     timer = std::make_unique<TimerOutput>(pcout,
-                                          print_wall_times ? TimerOutput::summary :
+                                          parameters.print_wall_times ? TimerOutput::summary :
                                                              TimerOutput::never,
                                           TimerOutput::wall_times);
     {
@@ -572,7 +572,7 @@ namespace anvil
       good_velocity = velocity;
     }
 
-    pcout << "Anvil: scene '" << scene_name << "' from " << scene_file << "\n"
+    pcout << "Anvil: scene '" << parameters.scene_name << "' from " << parameters.scene_file << "\n"
           << "  " << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI process(es), " << triangulation.n_global_active_cells()
           << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
@@ -584,10 +584,10 @@ namespace anvil
                   std::string())
             << "\n";
     pcout << "  the step computes: " << step_contents() << "\n";
-    pcout << "  results in " << output_directory << "/" << std::endl;
+    pcout << "  results in " << parameters.output_directory << "/" << std::endl;
 
     if (resume)
-      load_checkpoint(output_directory + "/checkpoint", false);
+      load_checkpoint(parameters.output_directory + "/checkpoint", false);
     else if (!resume_from.empty())
       load_checkpoint(resume_from, true);
     else
@@ -596,8 +596,8 @@ namespace anvil
         // Bodies out of the analysis from the start take no part in it
         // (nothing to book: the initial energy follows).
         remove_inactive_bodies(false);
-        if (duration > 0)
-          end_time = duration;
+        if (parameters.duration > 0)
+          parameters.end_time = parameters.duration;
         // Step 0: forces of the initial state (stress free), energy E_0.
         zero_forces();
         critical_dt = compute_internal_forces(0.);
@@ -624,10 +624,10 @@ namespace anvil
         summary.initial_kinetic = energies.kinetic;
         output_results(0., "solution");
         loop = LoopState();
-        loop.next_output = output_interval;
+        loop.next_output = parameters.output_interval;
       }
     // (The element loop's balance: this run's steps only.)
-    record_element_balance = print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
+    record_element_balance = parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
     element_loop_seconds.clear();
     element_balance = {};
     const auto   wall_start    = std::chrono::steady_clock::now();
@@ -637,13 +637,13 @@ namespace anvil
     double      &next_history  = loop.next_history;
     double      &next_progress = loop.next_progress;
     double       next_wall_progress = 0;
-    next_checkpoint            = checkpoint_interval > 0 ? time + checkpoint_interval : 1e300;
+    next_checkpoint            = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
     last_checkpoint_wall       = wall_start;
-    const double eps           = 1e-12 * end_time;
+    const double eps           = 1e-12 * parameters.end_time;
     bool &quiet_end = loop.quiet_end;
     while (true)
       {
-        const bool last = time >= end_time - eps || quiet_end;
+        const bool last = time >= parameters.end_time - eps || quiet_end;
         // The stable step from the current configuration; the last step
         // only synchronises the velocity.
         const double dt_stable = stable_time_step();
@@ -658,18 +658,18 @@ namespace anvil
         // more, by 0.1 % a step. A ringing body then keeps one step and the
         // bounded energy error of a fixed step.
         {
-          const double target = time_step_factor * dt_stable;
+          const double target = parameters.time_step_factor * dt_stable;
           double      &held   = loop.held_dt;
           if (held == 0 || target < 0.99 * held)
             held = target;
           else if (target > 1.01 * held)
             held = std::min(target, 1.001 * held);
         }
-        current_dt = last ? dt_previous : std::min(loop.held_dt, end_time - time);
+        current_dt = last ? dt_previous : std::min(loop.held_dt, parameters.end_time - time);
         if (!last)
           {
             const double dt_max =
-              max_dt_function ? max_dt_function->value(Point<1>(time)) : max_dt_constant;
+              parameters.max_dt_function ? parameters.max_dt_function->value(Point<1>(time)) : parameters.max_dt_constant;
             if (dt_max > 0 && dt_max < current_dt)
               current_dt = dt_max;
           }
@@ -677,9 +677,9 @@ namespace anvil
           current_dt = dt_previous;
         if (!last)
           {
-            summary.element_steps += current_dt / (time_step_factor * critical_dt);
+            summary.element_steps += current_dt / (parameters.time_step_factor * critical_dt);
             // (The step is held within 1 % of the stable one, see above.)
-            if (dt_stable < 0.999999 * critical_dt && current_dt >= 0.98 * time_step_factor * dt_stable)
+            if (dt_stable < 0.999999 * critical_dt && current_dt >= 0.98 * parameters.time_step_factor * dt_stable)
               ++summary.contact_limited_steps;
           }
 
@@ -692,7 +692,7 @@ namespace anvil
         // the last step synchronises the velocities, so that the stage goes
         // on with the step this run would have made (bitwise the same as
         // one run through the stage change).
-        if (last && checkpoint_at_end)
+        if (last && parameters.checkpoint_at_end)
           write_checkpoint();
         // Kinematic contact pairs, now that the step is known (after the
         // checkpoint: a run resumed from it makes their forces anew).
@@ -703,7 +703,7 @@ namespace anvil
               energies.contact += r.energy;
           }
         update_velocity(dt_previous, last ? 0. : current_dt);
-        check_health(time, step_number, time_step_factor * dt_stable);
+        check_health(time, step_number, parameters.time_step_factor * dt_stable);
         // The end criterion, met at time n, makes n+1 the last time (the
         // velocities are at n+1/2 already).
         if (update_summary(time) && !last)
@@ -711,39 +711,39 @@ namespace anvil
         if (time >= next_history - eps || last)
           {
             write_history(time, last ? 0. : current_dt);
-            next_history += history_interval;
+            next_history += parameters.history_interval;
           }
         // Progress: every 'Progress interval' of wall time (rank 0 alone
         // decides: printing involves no other rank), or every 10 % of the
         // end time where screen output must compare between runs.
         const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        const bool by_wall = print_wall_times && progress_interval > 0;
+        const bool by_wall = parameters.print_wall_times && parameters.progress_interval > 0;
         if ((by_wall ? (wall >= next_wall_progress || step_number == 0) :
                        time >= next_progress - eps) ||
             last)
           {
             const double eta =
-              time > time_start ? wall / (time - time_start) * (end_time - time) : -1.;
+              time > time_start ? wall / (time - time_start) * (parameters.end_time - time) : -1.;
             if (!last)
               write_status("running", time, wall, eta);
-            next_wall_progress = wall + progress_interval;
+            next_wall_progress = wall + parameters.progress_interval;
             pcout << "  step " << std::setw(7) << step_number << "  t = " << std::setw(11)
                   << std::setprecision(5) << time << " s  dt = " << std::setw(10)
                   << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
                   << "  E_int = " << std::setw(10) << energies.internal
                   << "  balance = " << std::setw(9) << balance_error;
-            if (print_wall_times && eta >= 0)
+            if (parameters.print_wall_times && eta >= 0)
               pcout << "  left ~" << std::setprecision(3) << eta << " s";
             pcout << std::endl;
             while (next_progress <= time + eps)
-              next_progress += 0.1 * end_time;
+              next_progress += 0.1 * parameters.end_time;
           }
         if (last)
           break;
-        if (step_number >= max_steps)
+        if (step_number >= parameters.max_steps)
           throw NumericalFailure("the run reached 'Maximum number of steps' = " +
-                                 std::to_string(max_steps) + " at t = " +
+                                 std::to_string(parameters.max_steps) + " at t = " +
                                  std::to_string(time) + " s");
 
         update_position(current_dt);
@@ -758,20 +758,20 @@ namespace anvil
         apply_contact(dt_previous);
         condense_forces();
 
-        if (output_interval > 0 && time >= next_output - eps && time < end_time - eps)
+        if (parameters.output_interval > 0 && time >= next_output - eps && time < parameters.end_time - eps)
           {
             output_results(time, "solution");
-            next_output += output_interval;
+            next_output += parameters.output_interval;
           }
 
         // A checkpoint by simulated time, by wall time (rank 0's clock,
         // shared at the health check) or on SIGTERM / SIGINT, which then
         // stops the run.
-        if (time >= next_checkpoint - eps && time < end_time - eps)
+        if (time >= next_checkpoint - eps && time < parameters.end_time - eps)
           {
             checkpoint_due = true;
             while (next_checkpoint <= time + eps)
-              next_checkpoint += checkpoint_interval;
+              next_checkpoint += parameters.checkpoint_interval;
           }
         if (checkpoint_due || stop_requested)
           {
@@ -782,7 +782,7 @@ namespace anvil
                 std::ostringstream msg;
                 msg << "interrupted at t = " << time << " s, step " << step_number
                     << ": checkpoint and frame index written; continue with 'anvil --resume "
-                    << scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                    << parameters.scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
                     << " process(es)";
                 throw Interrupted(msg.str());
               }
@@ -804,7 +804,7 @@ namespace anvil
     write_status("finished", time, wall_total, 0.);
     if (summary.ended_early)
       {
-        const auto &end = end_criterion;
+        const auto &end = parameters.end_criterion;
         pcout << "  " << (end.kinetic_fraction > 0 ? "the impact is over" : "the bodies have settled") << " (no "
               << (end.pairs.size() == contact->n_pairs() ? "contact force" : "force in the pairs it follows")
               << ", kinetic energy of the deformable bodies below ";
@@ -819,7 +819,7 @@ namespace anvil
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance_error;
     if (solids->n_eroded() > 0)
-      pcout << ", " << solids->n_eroded() << " elements eroded (" << output_directory << "/erosion.csv)";
+      pcout << ", " << solids->n_eroded() << " elements eroded (" << parameters.output_directory << "/erosion.csv)";
     if (summary.contact_limited_steps > 0)
       pcout << "\n  contact penalty springs set the size of " << summary.contact_limited_steps
             << " steps; the elements alone would have needed "
@@ -828,9 +828,9 @@ namespace anvil
     for (auto *family : contributors())
       if (!family->empty())
         pcout << family->end_of_run_note();
-    pcout << "  results: " << output_directory << "/energy.csv, "
-          << output_directory << "/solution.pvd" << std::endl;
-    if (print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+    pcout << "  results: " << parameters.output_directory << "/energy.csv, "
+          << parameters.output_directory << "/solution.pvd" << std::endl;
+    if (parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       {
         timer->print_wall_time_statistics(mpi_communicator);
         print_element_balance();
@@ -893,12 +893,12 @@ namespace anvil
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !output_directory_ready)
       return;
-    const std::string file = output_directory + "/status";
+    const std::string file = parameters.output_directory + "/status";
     {
       std::ofstream out(file + ".tmp");
       out << std::setprecision(8) << "state: " << state << "\nstep: " << step_number
-          << "\ntime_s: " << t << "\nend_time_s: " << end_time
-          << "\nfraction_done: " << std::setprecision(4) << t / end_time << std::setprecision(8)
+          << "\ntime_s: " << t << "\nend_time_s: " << parameters.end_time
+          << "\nfraction_done: " << std::setprecision(4) << t / parameters.end_time << std::setprecision(8)
           << "\ntime_step_s: " << current_dt << "\nkinetic_energy_J: " << energies.kinetic
           << "\ninternal_energy_J: " << energies.internal << "\nbalance_error: " << balance_error;
       if (wall_seconds >= 0)

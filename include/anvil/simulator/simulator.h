@@ -15,6 +15,7 @@
 #include <anvil/rebar/rebar.h>
 #include <anvil/rigid_body/rigid_bodies.h>
 #include <anvil/simulator/force_contributor.h>
+#include <anvil/simulator/parameters.h>
 #include <anvil/simulator/records.h>
 #include <anvil/simulator/simulator_access.h>
 
@@ -92,7 +93,7 @@ namespace anvil
     /** OUTPUT DIRECTORY/NAME of this scene. */
     const std::string &get_output_directory() const
     {
-      return output_directory;
+      return parameters.output_directory;
     }
 
     /** Print the whole parameter tree with documentation (.prm syntax). */
@@ -205,7 +206,6 @@ namespace anvil
     /** For --resume: the output directory must hold a checkpoint; nothing
         is deleted, the run's file list is read back. */
     void resume_output_directory();
-    bool      checkpoint_at_end = false;
     /** The loop's own schedule (what the step, outputs and end criterion
         have reached). */
     struct LoopState
@@ -220,8 +220,6 @@ namespace anvil
       double held_dt       = 0;
     };
     LoopState loop;
-    double    checkpoint_interval      = 0;
-    double    checkpoint_wall_interval = 0;
     double    next_checkpoint          = 1e300;
     std::chrono::steady_clock::time_point last_checkpoint_wall;
     bool      checkpoint_due = false;
@@ -276,24 +274,9 @@ namespace anvil
     dealii::ConditionalOStream pcout;
     std::unique_ptr<dealii::TimerOutput> timer;
 
-    // Scene parameters
-    std::string scene_file;
-    std::string scene_name;
-    /** What the translation of a deck warns of (Deck::Translation). */
-    std::vector<std::string> deck_notes;
-    std::string output_directory;
-    double      end_time;
-    double      time_step_factor;
-    double      output_interval;
-    double      history_interval;
-    double      energy_tolerance;
-    double      min_dt_ratio;
-    EndCriterion    end_criterion;
-    SummarySubjects summary_subjects;
-    /** 'Duration' (> 0): the run ends this long after its start (a
-        stage's: after the state it starts from), at stage_start +
-        duration; 0: at 'End time'. */
-    double      duration    = 0;
+    /** The settings the driver reads ('Simulation'). */
+    Parameters parameters;
+    /** The time the run (or stage) started from. */
     double      stage_start = 0;
     /** 'Inactive bodies': per body, whether it is out of the analysis
         (rigid bodies only: held still, their contact pairs skipped). */
@@ -302,22 +285,9 @@ namespace anvil
         @p book_energy their kinetic energy and that of their pairs'
         springs is booked as removed (a stage's start). */
     void        remove_inactive_bodies(bool book_energy);
-    /** 'Maximum time step' (<= 0: no bound): a constant, or a function of
-        t when the entry names t. */
-    double                                     max_dt_constant = 0;
-    std::unique_ptr<dealii::FunctionParser<1>> max_dt_function;
-    bool        overwrite_output;
-    bool        print_wall_times = false;
-    /** Wall time between progress lines (0: every 10 % of the end time). */
-    double      progress_interval = 5;
     /** Whether this run's output directory exists (a status file can go
         there). */
     bool        output_directory_ready = false;
-    bool        make_plots = false;
-    bool        compress_output = true;
-    /** 'Partitioner': hierarchical, metis or zoltan. */
-    std::string partitioner = "hierarchical";
-    unsigned int max_steps;
 
     std::vector<Body>                     bodies;
     std::vector<Probe>                    probes;
