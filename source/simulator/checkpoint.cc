@@ -118,10 +118,10 @@ namespace anvil
   // by name (RecordMismatch) while the other records stay readable.
   void Simulator::serialize(StateArchive &ar)
   {
-    ar &position &velocity &force &mass &good_position &good_velocity &good_time;
-    ar &energies &initial_energy &balance_error &energy_scale &critical_dt &pending_step_change
-      &step_change_steps &current_dt &step_number &time &growth_steps &negative_steps &first_dt &output_count
-          &summary &loop &stage_start;
+    ar &position &velocity &force &mass &balance.good_position &balance.good_velocity &balance.good_time;
+    ar &energies &balance.initial_energy &balance.balance_error &balance.energy_scale &critical_dt &balance.pending_step_change
+      &balance.step_change_steps &current_dt &step_number &time &balance.growth_steps &balance.negative_steps &balance.first_dt &output.output_count
+          &summary &loop;
 
     struct Part
     {
@@ -193,9 +193,9 @@ namespace anvil
     const std::string  dir  = parameters.output_directory + "/checkpoint";
     // The histories first: the checkpoint records how long they are.
     flush_histories();
-    if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
-      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
-                                                 output_failure);
+    if (Utilities::MPI::max(output.failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(output.failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output.failure);
     StateArchive ar;
     serialize(ar);
     // The open histories (rank 0's): file name and length; -1: not open.
@@ -252,7 +252,7 @@ namespace anvil
       }
     if (Utilities::MPI::max(failure.empty() ? 0 : 1, mpi_communicator) != 0)
       throw OutputError(failure.empty() ? "the checkpoint could not be completed (see rank 0)" : failure);
-    last_checkpoint_wall = std::chrono::steady_clock::now();
+    output.last_checkpoint_wall = std::chrono::steady_clock::now();
     pcout << "  checkpoint at t = " << time << " s, step " << step_number << std::endl;
   }
 
@@ -267,7 +267,7 @@ namespace anvil
         std::string   name;
         while (std::getline(list, name))
           if (!name.empty())
-            recorded_outputs.insert(name);
+            output.recorded_outputs.insert(name);
       }
   }
 
@@ -358,9 +358,9 @@ namespace anvil
     velocity.update_ghost_values();
     mass.update_ghost_values();
     if (new_stage)
-      stage_start = time;
+      loop.stage_start = time;
     if (parameters.duration > 0)
-      parameters.end_time = stage_start + parameters.duration;
+      parameters.end_time = loop.stage_start + parameters.duration;
     if (new_stage)
       {
         // A stage of its own: its histories, frames and figures start
@@ -371,12 +371,12 @@ namespace anvil
           family->start_stage();
         for (auto &postprocessor : postprocessors)
           postprocessor->start_stage();
-        output_count       = 0;
+        output.output_count       = 0;
         loop.next_output   = time + parameters.output_interval;
         loop.next_history  = time;
         loop.next_progress = time;
         loop.quiet_end     = false;
-        last_flush         = std::chrono::steady_clock::now();
+        output.last_flush         = std::chrono::steady_clock::now();
         pcout << "  a new stage from the checkpoint in " << directory << " at t = " << time << " s, step "
               << step_number << "; it ends at t = " << parameters.end_time << " s" << std::endl;
         output_results(time, "solution");
@@ -399,7 +399,7 @@ namespace anvil
           if (lengths[k] >= 0)
             files[k]->resume(parameters.output_directory + "/" + names[k], lengths[k]);
       }
-    last_flush = std::chrono::steady_clock::now();
+    output.last_flush = std::chrono::steady_clock::now();
     pcout << "  resumed from the checkpoint at t = " << time << " s, step " << step_number << std::endl;
   }
 } // namespace anvil

@@ -34,8 +34,8 @@ namespace anvil
         family->write_history(t, dt);
     // All histories reach the disk together, at most a second or 1,000 rows
     // apart.
-    if (++rows_since_flush >= 1000 ||
-        std::chrono::steady_clock::now() - last_flush > std::chrono::seconds(1))
+    if (++output.rows_since_flush >= 1000 ||
+        std::chrono::steady_clock::now() - output.last_flush > std::chrono::seconds(1))
       flush_histories();
   }
 
@@ -45,13 +45,13 @@ namespace anvil
   {
     TimerOutput::Scope timer_scope(*timer, "output");
     for (auto &postprocessor : postprocessors)
-      postprocessor->write_frame(t, basename, output_count);
+      postprocessor->write_frame(t, basename, output.output_count);
     if (basename == "solution")
       {
         for (auto *family : contributors())
           if (!family->empty())
-            family->output_frame(t, output_count);
-        ++output_count;
+            family->output_frame(t, output.output_count);
+        ++output.output_count;
       }
   }
 
@@ -71,12 +71,12 @@ namespace anvil
 
   void Simulator::flush_histories()
   {
-    last_flush       = std::chrono::steady_clock::now();
-    rows_since_flush = 0;
+    output.last_flush       = std::chrono::steady_clock::now();
+    output.rows_since_flush = 0;
     auto flush = [&](HistoryFile &f) {
       const std::string failure = f.flush();
-      if (!failure.empty() && output_failure.empty())
-        output_failure = failure;
+      if (!failure.empty() && output.failure.empty())
+        output.failure = failure;
     };
     for (auto *f : history_files())
       flush(*f);
@@ -85,7 +85,7 @@ namespace anvil
 
   void Simulator::record_output(const std::string &name)
   {
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !recorded_outputs.insert(name).second)
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !output.recorded_outputs.insert(name).second)
       return;
     std::ofstream list(parameters.output_directory + "/anvil_files.txt", std::ios::app);
     list << name << '\n';

@@ -842,7 +842,7 @@ namespace anvil
             bodies[b].parse_parameters(prm, body_names[b], dir.empty() ? "." : dir);
             prm.leave_subsection();
           }
-        body_inactive.assign(bodies.size(), 0);
+        parameters.inactive_bodies.assign(bodies.size(), 0);
         for (const auto &name : inactive_names)
           {
             const auto it = std::find(body_names.begin(), body_names.end(), name);
@@ -853,7 +853,7 @@ namespace anvil
               throw InputError("entry 'Simulation/Inactive bodies': body '" + name +
                                "' is deformable; only rigid bodies (impactors) can be taken out of "
                                "the analysis");
-            body_inactive[it - body_names.begin()] = 1;
+            parameters.inactive_bodies[it - body_names.begin()] = 1;
           }
         auto check_body = [&](const std::string &name, const std::string &where) {
           if (std::find(body_names.begin(), body_names.end(), name) ==
@@ -878,7 +878,7 @@ namespace anvil
             check_body(pairs.back()->second_body, "Contact pair " + pair_names[i]);
             pair_inactive.push_back(0);
             for (unsigned int b = 0; b < bodies.size(); ++b)
-              if (body_inactive[b] && (body_names[b] == pairs.back()->first_body ||
+              if (parameters.inactive_bodies[b] && (body_names[b] == pairs.back()->first_body ||
                                        body_names[b] == pairs.back()->second_body))
                 pair_inactive.back() = 1;
             const std::string note = pairs.back()->parse_note();
@@ -896,7 +896,7 @@ namespace anvil
         solids = std::make_unique<Element::SolidBodies>(*this);
         families.clear();
         families.push_back(
-          std::make_unique<RigidBody::RigidBodies>(*this, fe, velocity, rigid_dof, body_inactive));
+          std::make_unique<RigidBody::RigidBodies>(*this, fe, velocity, rigid_dof, parameters.inactive_bodies));
         rigid_bodies = static_cast<RigidBody::RigidBodies *>(families.back().get());
         families.push_back(std::make_unique<Rebar::Reinforcement>(*this, std::move(rebar_layouts)));
         constraints = constraints_and_loads.get();

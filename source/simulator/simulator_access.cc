@@ -149,12 +149,12 @@ namespace anvil
 
   double SimulatorAccess::get_initial_energy() const
   {
-    return simulator.initial_energy;
+    return simulator.balance.initial_energy;
   }
 
   double SimulatorAccess::get_balance_error() const
   {
-    return simulator.balance_error;
+    return simulator.balance.balance_error;
   }
 
   const std::string &SimulatorAccess::get_scene_name() const

@@ -24,10 +24,10 @@ namespace anvil
   // energies and the replicated contact results): no communication.
   bool Simulator::update_summary(const double t)
   {
-    summary.max_balance_error = std::max(summary.max_balance_error, balance_error);
+    summary.max_balance_error = std::max(summary.max_balance_error, balance.balance_error);
     // The hourglass share once the internal energy is a measurable part of
     // the initial energy (before, a ratio of two round-off figures).
-    if (energies.internal > 0.01 * std::abs(initial_energy))
+    if (energies.internal > 0.01 * std::abs(balance.initial_energy))
       summary.max_hourglass_ratio =
         std::max(summary.max_hourglass_ratio, energies.hourglass / energies.internal);
 
@@ -64,7 +64,7 @@ namespace anvil
     // has settled (against its internal energy): each one set must hold.
     const bool quiet =
       !in_contact &&
-      (end.kinetic_fraction <= 0 || deformable_kinetic < end.kinetic_fraction * std::abs(initial_energy)) &&
+      (end.kinetic_fraction <= 0 || deformable_kinetic < end.kinetic_fraction * std::abs(balance.initial_energy)) &&
       (end.kinetic_internal_ratio <= 0 || deformable_kinetic < end.kinetic_internal_ratio * energies.internal);
     if (!quiet)
       {

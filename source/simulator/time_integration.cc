@@ -53,13 +53,13 @@ namespace anvil
     StepSection t(*timer, parameters.print_wall_times, "element forces");
     // (The clock only where the balance is recorded.)
     const auto start =
-      record_element_balance ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
+      element_balance.record ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
     double dt_crit = solids->add_forces(dt_previous);
-    if (record_element_balance)
+    if (element_balance.record)
       {
-        element_loop_seconds.push_back(
+        element_balance.seconds.push_back(
           std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count());
-        if (element_loop_seconds.size() == 4096)
+        if (element_balance.seconds.size() == 4096)
           reduce_element_balance();
       }
     t.stop();
@@ -178,8 +178,8 @@ namespace anvil
     // The identity at time n holds with the step-change terms of the steps
     // before n; this step's is booked at n+1. The last call (dt = 0, the
     // synchronisation of the velocities) needs none: K^n is exact there.
-    energies.step_change += pending_step_change;
-    pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + own.power) : 0.;
+    energies.step_change += balance.pending_step_change;
+    balance.pending_step_change = dt > 0 ? 0.25 * (dt - dt_previous) * (sums[2] + own.power) : 0.;
   }
 
 
@@ -226,23 +226,23 @@ namespace anvil
     // a checkpoint is due and whether the run was asked to stop.
     const bool wall_due = parameters.checkpoint_wall_interval > 0 &&
                           std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                        last_checkpoint_wall)
+                                                        output.last_checkpoint_wall)
                               .count() >= parameters.checkpoint_wall_interval &&
                           Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     std::array<double, 4> flags{{double(solids->inverted_cell()),
-                                 output_failure.empty() ? 0. : 1.,
+                                 output.failure.empty() ? 0. : 1.,
                                  wall_due ? 1. : 0.,
                                  stop_signal_received() ? 1. : 0.}};
     Utilities::MPI::max(ArrayView<const double>(flags.data(), flags.size()),
                         mpi_communicator,
                         ArrayView<double>(flags.data(), flags.size()));
     if (flags[2] != 0)
-      checkpoint_due = true;
+      output.checkpoint_due = true;
     if (flags[3] != 0)
-      stop_requested = true;
+      output.stop_requested = true;
     if (flags[1] != 0)
-      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
-                                                 output_failure);
+      throw OutputError(output.failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output.failure);
     const long int inverted = std::lround(flags[0]);
     std::string    problem;
     if (inverted >= 0)
@@ -274,12 +274,12 @@ namespace anvil
           << ", 'Minimum time step ratio'): lower the contact pairs' 'Penalty scale factor'";
         problem = s.str();
       }
-    if (first_dt == 0)
-      first_dt = dt_next;
-    if (problem.empty() && parameters.min_dt_ratio > 0 && dt_next < parameters.min_dt_ratio * first_dt)
+    if (balance.first_dt == 0)
+      balance.first_dt = dt_next;
+    if (problem.empty() && parameters.min_dt_ratio > 0 && dt_next < parameters.min_dt_ratio * balance.first_dt)
       {
         std::ostringstream s;
-        s << "the stable time step fell to " << dt_next << " s, " << dt_next / first_dt
+        s << "the stable time step fell to " << dt_next << " s, " << dt_next / balance.first_dt
           << " of the first step's (limit " << parameters.min_dt_ratio
           << ", 'Minimum time step ratio'): an element is collapsing";
         problem = s.str();
@@ -288,25 +288,25 @@ namespace anvil
     // The largest energy level the run has reached: once energy has
     // flowed through the model, an absolute error small against it is no
     // growth even when the energies return near zero (a bar that rings).
-    energy_scale = std::max({energy_scale, std::abs(energies.kinetic), std::abs(energies.internal),
-                             std::abs(initial_energy), std::abs(energies.external_work), 1e-300});
-    const double scale = energy_scale;
-    balance_error = std::abs(e_total - initial_energy - energies.external_work) / scale;
+    balance.energy_scale = std::max({balance.energy_scale, std::abs(energies.kinetic), std::abs(energies.internal),
+                             std::abs(balance.initial_energy), std::abs(energies.external_work), 1e-300});
+    const double scale = balance.energy_scale;
+    balance.balance_error = std::abs(e_total - balance.initial_energy - energies.external_work) / scale;
     if (problem.empty() && !std::isfinite(e_total))
       problem = "the energies are not finite (NaN or infinity)";
     // Energy growth must persist: a single step's excess can be the
     // O(omega dt) error with which the leapfrog measures the energy of the
     // highest modes after a sudden start; an instability grows without
     // bound.
-    if ((e_total - initial_energy - energies.external_work) > parameters.energy_tolerance * scale)
-      ++growth_steps;
+    if ((e_total - balance.initial_energy - energies.external_work) > parameters.energy_tolerance * scale)
+      ++balance.growth_steps;
     else
-      growth_steps = 0;
+      balance.growth_steps = 0;
     if (energies.internal < -parameters.energy_tolerance * scale)
-      ++negative_steps;
+      ++balance.negative_steps;
     else
-      negative_steps = 0;
-    if (problem.empty() && negative_steps >= 10)
+      balance.negative_steps = 0;
+    if (problem.empty() && balance.negative_steps >= 10)
       {
         std::ostringstream s;
         s << "the internal energy is negative, " << energies.internal << " J ("
@@ -321,10 +321,10 @@ namespace anvil
     // step (a step that switches back and forth resonates with the mesh's
     // modes); the balance closes with this term, so it is checked itself.
     if (-energies.step_change > parameters.energy_tolerance * scale)
-      ++step_change_steps;
+      ++balance.step_change_steps;
     else
-      step_change_steps = 0;
-    if (problem.empty() && step_change_steps >= 10)
+      balance.step_change_steps = 0;
+    if (problem.empty() && balance.step_change_steps >= 10)
       {
         std::ostringstream s;
         s << "the changes of the time step created " << -energies.step_change << " J ("
@@ -334,16 +334,16 @@ namespace anvil
           << " %, 'Energy balance tolerance'): the explicit step is unstable, or a step that "
              "varies back and forth resonates with the mesh; lower 'Time step safety factor' (now "
           << parameters.time_step_factor << ")";
-        if (first_dt > 0 && dt_next < 0.5 * first_dt)
-          s << "; the stable step has fallen to " << dt_next / first_dt
+        if (balance.first_dt > 0 && dt_next < 0.5 * balance.first_dt)
+          s << "; the stable step has fallen to " << dt_next / balance.first_dt
             << " of the first step's: an element is collapsing";
         problem = s.str();
       }
     const bool other_problem = !problem.empty();
-    if (problem.empty() && growth_steps >= 10)
+    if (problem.empty() && balance.growth_steps >= 10)
       {
         std::ostringstream s;
-        s << "the total energy grew by " << 100. * balance_error
+        s << "the total energy grew by " << 100. * balance.balance_error
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far beyond the external work (limit "
           << 100. * parameters.energy_tolerance
           << " %, 'Energy balance tolerance'); the explicit step is unstable "
@@ -351,11 +351,11 @@ namespace anvil
           << parameters.time_step_factor << ")";
         problem = s.str();
       }
-    if (other_problem && growth_steps > 0)
+    if (other_problem && balance.growth_steps > 0)
       {
         std::ostringstream s;
-        s << "; the explicit step is unstable: the total energy had grown for " << growth_steps
-          << " steps to " << 100. * balance_error
+        s << "; the explicit step is unstable: the total energy had grown for " << balance.growth_steps
+          << " steps to " << 100. * balance.balance_error
           << " % of the largest of E_kin, E_int, E_0, |W_ext| so far beyond the external work (time step safety factor "
           << parameters.time_step_factor << ")";
         problem += s.str();
@@ -364,9 +364,9 @@ namespace anvil
       {
         if (step % 50 == 0)
           {
-            good_position = position;
-            good_velocity = velocity;
-            good_time     = t;
+            balance.good_position = position;
+            balance.good_velocity = velocity;
+            balance.good_time     = t;
           }
         return;
       }
@@ -414,17 +414,17 @@ namespace anvil
       info = Utilities::MPI::broadcast(mpi_communicator, info, owner);
 
     // Leave the last good state on disk.
-    position = good_position;
-    velocity = good_velocity;
+    position = balance.good_position;
+    velocity = balance.good_velocity;
     position.update_ghost_values();
     velocity.update_ghost_values();
-    output_results(good_time, "last_good");
+    output_results(balance.good_time, "last_good");
 
     std::ostringstream msg;
     msg << "numerical failure at t = " << t << " s, step " << step << ": "
         << problem << "; at element " << long(info[4]) << " of body '"
         << bodies[int(info[3])].name << "' near (" << info[0] << ", " << info[1]
-        << ", " << info[2] << "); last good state (t = " << good_time
+        << ", " << info[2] << "); last good state (t = " << balance.good_time
         << " s) written to " << parameters.output_directory << "/last_good.pvtu";
     throw NumericalFailure(msg.str());
   }
@@ -512,7 +512,7 @@ namespace anvil
         // Every rank arrives here together (input errors and numerical
         // failures follow from replicated data or global reductions); the
         // timing summary of a failed run is of no use.
-        if (output_directory_ready)
+        if (output.directory_ready)
           {
             std::string message = "unknown error";
             try
@@ -564,12 +564,12 @@ namespace anvil
             check_checkpoint(resume_from);
           prepare_output_directory();
         }
-      output_directory_ready = true;
+      output.directory_ready = true;
       record_output("status");
       position.update_ghost_values();
       velocity.update_ghost_values();
-      good_position = position;
-      good_velocity = velocity;
+      balance.good_position = position;
+      balance.good_velocity = velocity;
     }
 
     pcout << "Anvil: scene '" << parameters.scene_name << "' from " << parameters.scene_file << "\n"
@@ -620,16 +620,15 @@ namespace anvil
         energies.kinetic = 0.5 * Utilities::MPI::sum(kinetic0, mpi_communicator);
         for (const auto *family : contributors())
           family->add_kinetic_energy(energies.kinetic);
-        initial_energy   = energies.total();
+        balance.initial_energy   = energies.total();
         summary.initial_kinetic = energies.kinetic;
         output_results(0., "solution");
         loop = LoopState();
         loop.next_output = parameters.output_interval;
       }
     // (The element loop's balance: this run's steps only.)
-    record_element_balance = parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
-    element_loop_seconds.clear();
-    element_balance = {};
+    element_balance        = {};
+    element_balance.record = parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
     const auto   wall_start    = std::chrono::steady_clock::now();
     const double time_start    = time;
     double      &dt_previous   = loop.dt_previous;
@@ -637,8 +636,8 @@ namespace anvil
     double      &next_history  = loop.next_history;
     double      &next_progress = loop.next_progress;
     double       next_wall_progress = 0;
-    next_checkpoint            = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
-    last_checkpoint_wall       = wall_start;
+    output.next_checkpoint            = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
+    output.last_checkpoint_wall       = wall_start;
     const double eps           = 1e-12 * parameters.end_time;
     bool &quiet_end = loop.quiet_end;
     while (true)
@@ -732,7 +731,7 @@ namespace anvil
                   << std::setprecision(5) << time << " s  dt = " << std::setw(10)
                   << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
                   << "  E_int = " << std::setw(10) << energies.internal
-                  << "  balance = " << std::setw(9) << balance_error;
+                  << "  balance = " << std::setw(9) << balance.balance_error;
             if (parameters.print_wall_times && eta >= 0)
               pcout << "  left ~" << std::setprecision(3) << eta << " s";
             pcout << std::endl;
@@ -767,17 +766,17 @@ namespace anvil
         // A checkpoint by simulated time, by wall time (rank 0's clock,
         // shared at the health check) or on SIGTERM / SIGINT, which then
         // stops the run.
-        if (time >= next_checkpoint - eps && time < parameters.end_time - eps)
+        if (time >= output.next_checkpoint - eps && time < parameters.end_time - eps)
           {
-            checkpoint_due = true;
-            while (next_checkpoint <= time + eps)
-              next_checkpoint += parameters.checkpoint_interval;
+            output.checkpoint_due = true;
+            while (output.next_checkpoint <= time + eps)
+              output.next_checkpoint += parameters.checkpoint_interval;
           }
-        if (checkpoint_due || stop_requested)
+        if (output.checkpoint_due || output.stop_requested)
           {
             write_checkpoint();
-            checkpoint_due = false;
-            if (stop_requested)
+            output.checkpoint_due = false;
+            if (output.stop_requested)
               {
                 std::ostringstream msg;
                 msg << "interrupted at t = " << time << " s, step " << step_number
@@ -792,9 +791,9 @@ namespace anvil
     velocity.update_ghost_values();
     output_results(time, "solution");
     flush_histories();
-    if (Utilities::MPI::max(output_failure.empty() ? 0 : 1, mpi_communicator) != 0)
-      throw OutputError(output_failure.empty() ? "a history file could not be written (see rank 0)" :
-                                                 output_failure);
+    if (Utilities::MPI::max(output.failure.empty() ? 0 : 1, mpi_communicator) != 0)
+      throw OutputError(output.failure.empty() ? "a history file could not be written (see rank 0)" :
+                                                 output.failure);
     const double wall_total =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     // The last frame, bodies.csv, summary.csv, the plots (in the
@@ -817,7 +816,7 @@ namespace anvil
         pcout << " for " << end.quiet_time << " s): the run ends before its end time" << std::endl;
       }
     pcout << "  done: " << step_number << " steps to t = " << time
-          << " s, energy balance error " << balance_error;
+          << " s, energy balance error " << balance.balance_error;
     if (solids->n_eroded() > 0)
       pcout << ", " << solids->n_eroded() << " elements eroded (" << parameters.output_directory << "/erosion.csv)";
     if (summary.contact_limited_steps > 0)
@@ -852,9 +851,9 @@ namespace anvil
   void Simulator::reduce_element_balance()
   {
     const unsigned int  n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const unsigned int  steps   = Utilities::MPI::min(static_cast<unsigned int>(element_loop_seconds.size()),
+    const unsigned int  steps   = Utilities::MPI::min(static_cast<unsigned int>(element_balance.seconds.size()),
                                                     mpi_communicator);
-    std::vector<double> mine(element_loop_seconds.begin(), element_loop_seconds.begin() + steps);
+    std::vector<double> mine(element_balance.seconds.begin(), element_balance.seconds.begin() + steps);
     std::vector<double> slowest(steps), total(steps);
     Utilities::MPI::max(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(slowest));
     Utilities::MPI::sum(ArrayView<const double>(mine), mpi_communicator, ArrayView<double>(total));
@@ -865,7 +864,7 @@ namespace anvil
         element_balance.mean += total[s] / n_ranks;
       }
     element_balance.steps += steps;
-    element_loop_seconds.clear();
+    element_balance.seconds.clear();
   }
 
 
@@ -891,7 +890,7 @@ namespace anvil
   void Simulator::write_status(const std::string &state, const double t, const double wall_seconds,
                                const double eta_seconds, const std::string &message) const
   {
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !output_directory_ready)
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0 || !output.directory_ready)
       return;
     const std::string file = parameters.output_directory + "/status";
     {
@@ -900,7 +899,7 @@ namespace anvil
           << "\ntime_s: " << t << "\nend_time_s: " << parameters.end_time
           << "\nfraction_done: " << std::setprecision(4) << t / parameters.end_time << std::setprecision(8)
           << "\ntime_step_s: " << current_dt << "\nkinetic_energy_J: " << energies.kinetic
-          << "\ninternal_energy_J: " << energies.internal << "\nbalance_error: " << balance_error;
+          << "\ninternal_energy_J: " << energies.internal << "\nbalance_error: " << balance.balance_error;
       if (wall_seconds >= 0)
         out << "\nwall_time_s: " << std::setprecision(4) << wall_seconds;
       if (eta_seconds >= 0)

@@ -53,6 +53,9 @@ namespace anvil
     double checkpoint_interval      = 0;
     double checkpoint_wall_interval = 0;
     bool   checkpoint_at_end        = false;
+    /** 'Inactive bodies': per body, whether it is out of the analysis
+        (rigid bodies only: held still, their contact pairs skipped). */
+    std::vector<unsigned char> inactive_bodies;
     /** 'Partitioner': hierarchical, metis or zoltan. */
     std::string partitioner = "hierarchical";
   };

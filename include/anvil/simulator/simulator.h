@@ -158,7 +158,7 @@ namespace anvil
         their masters (nothing without local refinement). */
     void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 9;
+    static constexpr int checkpoint_layout = 10;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
@@ -218,26 +218,12 @@ namespace anvil
       /** The step the stable step allows, held against small rises (see
           run_scene). */
       double held_dt       = 0;
+      /** The time the run (or its stage) started from. */
+      double stage_start = 0;
     };
     LoopState loop;
-    double    next_checkpoint          = 1e300;
-    std::chrono::steady_clock::time_point last_checkpoint_wall;
-    bool      checkpoint_due = false;
-    bool      stop_requested = false;
     void   zero_forces();
     double compute_internal_forces(double dt_previous);
-    /** With 'Print wall times' on several processes: the wall time of each
-        step's element loop on this process, reduced over the processes
-        every 4096 steps into the sums below (this run's steps), and what
-        the ranks lose waiting for the slowest one, printed at the end
-        (print_element_balance()). */
-    std::vector<float> element_loop_seconds;
-    bool               record_element_balance = false;
-    struct
-    {
-      unsigned long steps = 0;
-      double        own = 0, slowest_by_step = 0, mean = 0;
-    } element_balance;
     void reduce_element_balance();
     void print_element_balance();
     void   apply_contact(double dt_previous);
@@ -276,18 +262,10 @@ namespace anvil
 
     /** The settings the driver reads ('Simulation'). */
     Parameters parameters;
-    /** The time the run (or stage) started from. */
-    double      stage_start = 0;
-    /** 'Inactive bodies': per body, whether it is out of the analysis
-        (rigid bodies only: held still, their contact pairs skipped). */
-    std::vector<unsigned char> body_inactive;
     /** Take the inactive bodies out: their motion stops; with
         @p book_energy their kinetic energy and that of their pairs'
         springs is booked as removed (a stage's start). */
     void        remove_inactive_bodies(bool book_energy);
-    /** Whether this run's output directory exists (a status file can go
-        there). */
-    bool        output_directory_ready = false;
 
     std::vector<Body>                     bodies;
     std::vector<Probe>                    probes;
@@ -326,9 +304,6 @@ namespace anvil
     VectorType mass;
     /** Body index of each locally owned dof, for momentum output. */
     std::vector<unsigned char> dof_body, dof_component;
-    /** Last state that passed the health checks. */
-    VectorType good_position, good_velocity;
-    double     good_time = 0;
 
     /** A mask of the owned dofs that belong to rigid bodies (empty: no
         rigid bodies), set by the rigid-body family. */
@@ -357,26 +332,10 @@ namespace anvil
 
     // Energy bookkeeping
     Energies     energies;
-    double       initial_energy = 0;
-    double       balance_error  = 0;
-    /** Running maximum of E_kin, E_int, E_0, |W_ext|: the balance scale. */
-    double       energy_scale   = 0;
     double       critical_dt    = 0;
-    /** The step-change energy of time n, booked at n+1 (the identity at
-        time n holds with the terms of the earlier steps). */
-    double       pending_step_change = 0;
-    /** Consecutive steps with the step-change energy creating more than
-        the tolerance. */
-    unsigned int step_change_steps = 0;
     double       current_dt     = 0;
     unsigned int step_number    = 0;
     double       time           = 0;
-    /** Consecutive steps with the energy above the tolerance, and with the
-        internal energy below minus the tolerance. */
-    unsigned int growth_steps   = 0;
-    unsigned int negative_steps = 0;
-    /** The first step's stable step (for 'Minimum time step ratio'). */
-    double       first_dt       = 0;
 
 
     /** What the run writes besides the families' histories, in their
@@ -389,16 +348,67 @@ namespace anvil
         error is kept in output_failure, shared with the other ranks at the
         next health check. */
     void                         flush_histories();
-    std::chrono::steady_clock::time_point last_flush;
-    unsigned int                 rows_since_flush = 0;
-    std::string                  output_failure;
     /** Note @p name (in the output directory) in anvil_files.txt before it
         is written: the next run in that directory deletes just these
         (rank 0). */
     void                         record_output(const std::string &name);
-    std::set<std::string>        recorded_outputs;
-    /** The frames of the time series so far. */
-    unsigned int                 output_count = 0;
+    /** The energy balance and the health checks on it (check_health). */
+    struct Balance
+    {
+      double initial_energy = 0;
+      double balance_error  = 0;
+      /** Running maximum of E_kin, E_int, E_0, |W_ext|: the balance scale. */
+      double energy_scale = 0;
+      /** The step-change energy of time n, booked at n+1 (the identity at
+          time n holds with the terms of the earlier steps). */
+      double pending_step_change = 0;
+      /** Consecutive steps with the step-change energy creating more than
+          the tolerance, with the energy above it, and with the internal
+          energy below minus it. */
+      unsigned int step_change_steps = 0;
+      unsigned int growth_steps      = 0;
+      unsigned int negative_steps    = 0;
+      /** The first step's stable step (for 'Minimum time step ratio'). */
+      double first_dt = 0;
+      /** The last state that passed the health checks. */
+      VectorType good_position, good_velocity;
+      double     good_time = 0;
+    } balance;
+
+    /** What the run has written and when it writes next: histories
+        flushed together, the files noted in anvil_files.txt, the frames,
+        checkpoints. */
+    struct OutputState
+    {
+      /** Whether this run's output directory exists (a status file can go
+          there). */
+      bool                                  directory_ready = false;
+      std::chrono::steady_clock::time_point last_flush;
+      unsigned int                          rows_since_flush = 0;
+      /** A failed write of the histories (rank 0), shared with the other
+          ranks at the next health check. */
+      std::string           failure;
+      std::set<std::string> recorded_outputs;
+      /** The frames of the time series so far. */
+      unsigned int                          output_count    = 0;
+      double                                next_checkpoint = 1e300;
+      std::chrono::steady_clock::time_point last_checkpoint_wall;
+      bool                                  checkpoint_due = false;
+      bool                                  stop_requested = false;
+    } output;
+
+    /** With 'Print wall times' on several processes: the wall time of each
+        step's element loop on this process, reduced over the processes
+        every 4096 steps into the sums (this run's steps), and what the
+        ranks lose waiting for the slowest one, printed at the end
+        (print_element_balance()). */
+    struct ElementBalance
+    {
+      std::vector<float> seconds;
+      bool               record = false;
+      unsigned long      steps  = 0;
+      double             own = 0, slowest_by_step = 0, mean = 0;
+    } element_balance;
   };
 
   /**
