@@ -542,7 +542,74 @@ namespace anvil
   }
 
 
+  // @sect3{The run}
+  //
+  // Setup and the initial state (or a checkpoint's), then per step: the
+  // step size, the velocity update with the forces of time n, the health
+  // checks, histories and progress at time n, then the positions of n+1
+  // and their forces; the end of the run writes the summaries.
   void Simulator::run_scene(const bool resume, const std::string &resume_from)
+  {
+    start_run(resume, resume_from);
+    RunClock clock{std::chrono::steady_clock::now(), time, 0., 1e-12 * parameters.end_time};
+    output.next_checkpoint      = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
+    output.last_checkpoint_wall = clock.wall_start;
+    double      &dt_previous  = loop.dt_previous;
+    double      &next_history = loop.next_history;
+    bool        &quiet_end    = loop.quiet_end;
+    const double eps          = clock.eps;
+    while (true)
+      {
+        const bool   last      = time >= parameters.end_time - eps || quiet_end;
+        const double dt_stable = choose_step(last);
+        // Contact energy of the configuration x^n.
+        energies.contact = 0;
+        for (const auto &r : contact->results())
+          energies.contact += r.energy;
+
+        // The state a next stage starts from: x^n, v^{n-1/2} and F^n, before
+        // the last step synchronises the velocities, so that the stage goes
+        // on with the step this run would have made (bitwise the same as
+        // one run through the stage change).
+        if (last && parameters.checkpoint_at_end)
+          write_checkpoint();
+        // Kinematic contact pairs, now that the step is known (after the
+        // checkpoint: a run resumed from it makes their forces anew).
+        if (apply_kinematic_contact(dt_previous, last ? 0. : current_dt))
+          {
+            energies.contact = 0;
+            for (const auto &r : contact->results())
+              energies.contact += r.energy;
+          }
+        update_velocity(dt_previous, last ? 0. : current_dt);
+        check_health(time, step_number, parameters.time_step_factor * dt_stable);
+        // The end criterion, met at time n, makes n+1 the last time (the
+        // velocities are at n+1/2 already).
+        if (update_summary(time) && !last)
+          quiet_end = true;
+        if (time >= next_history - eps || last)
+          {
+            write_history(time, last ? 0. : current_dt);
+            next_history += parameters.history_interval;
+          }
+        report_progress(clock, last);
+        if (last)
+          break;
+        if (step_number >= parameters.max_steps)
+          throw NumericalFailure("the run reached 'Maximum number of steps' = " +
+                                 std::to_string(parameters.max_steps) + " at t = " +
+                                 std::to_string(time) + " s");
+
+        advance(clock);
+      }
+    finish_run(clock);
+  }
+
+
+  // Build the scene, prepare the output directory, and set up the state
+  // the loop starts from: the initial one (its forces, energy and first
+  // frame) or a checkpoint's.
+  void Simulator::start_run(const bool resume, const std::string &resume_from)
   {
     // Each rank times its own sections: a TimerOutput over the communicator
     // would put a barrier before and after every section of every step
@@ -629,164 +696,144 @@ namespace anvil
     // (The element loop's balance: this run's steps only.)
     element_balance        = {};
     element_balance.record = parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
-    const auto   wall_start    = std::chrono::steady_clock::now();
-    const double time_start    = time;
-    double      &dt_previous   = loop.dt_previous;
-    double      &next_output   = loop.next_output;
-    double      &next_history  = loop.next_history;
-    double      &next_progress = loop.next_progress;
-    double       next_wall_progress = 0;
-    output.next_checkpoint            = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
-    output.last_checkpoint_wall       = wall_start;
-    const double eps           = 1e-12 * parameters.end_time;
-    bool &quiet_end = loop.quiet_end;
-    while (true)
+  }
+
+
+  // The step from time n: the stable step, held against small changes,
+  // cut to the end time and to 'Maximum time step'; the last step (dt = 0)
+  // only synchronises the velocities. Returns the stable step.
+  double Simulator::choose_step(const bool last)
+  {
+    const double &dt_previous = loop.dt_previous;
+    // The stable step from the current configuration; the last step
+    // only synchronises the velocity.
+    const double dt_stable = stable_time_step();
+    // The stable step follows the mesh: where it oscillates with the
+    // motion (an elastic body ringing), a step that follows it pumps
+    // energy into that motion (the variable-step scheme's error,
+    // energies.step_change: 5 % of the energy in 700 steps of a ringing
+    // block), and every fall of the step creates some. So the step is
+    // held while the safety factor it amounts to stays within 1 % of
+    // the one asked for: it falls once it would exceed it by 1 % (to
+    // the factor asked for), and rises once the stable step allows 1 %
+    // more, by 0.1 % a step. A ringing body then keeps one step and the
+    // bounded energy error of a fixed step.
+    {
+      const double target = parameters.time_step_factor * dt_stable;
+      double      &held   = loop.held_dt;
+      if (held == 0 || target < 0.99 * held)
+        held = target;
+      else if (target > 1.01 * held)
+        held = std::min(target, 1.001 * held);
+    }
+    current_dt = last ? dt_previous : std::min(loop.held_dt, parameters.end_time - time);
+    if (!last)
       {
-        const bool last = time >= parameters.end_time - eps || quiet_end;
-        // The stable step from the current configuration; the last step
-        // only synchronises the velocity.
-        const double dt_stable = stable_time_step();
-        // The stable step follows the mesh: where it oscillates with the
-        // motion (an elastic body ringing), a step that follows it pumps
-        // energy into that motion (the variable-step scheme's error,
-        // energies.step_change: 5 % of the energy in 700 steps of a ringing
-        // block), and every fall of the step creates some. So the step is
-        // held while the safety factor it amounts to stays within 1 % of
-        // the one asked for: it falls once it would exceed it by 1 % (to
-        // the factor asked for), and rises once the stable step allows 1 %
-        // more, by 0.1 % a step. A ringing body then keeps one step and the
-        // bounded energy error of a fixed step.
-        {
-          const double target = parameters.time_step_factor * dt_stable;
-          double      &held   = loop.held_dt;
-          if (held == 0 || target < 0.99 * held)
-            held = target;
-          else if (target > 1.01 * held)
-            held = std::min(target, 1.001 * held);
-        }
-        current_dt = last ? dt_previous : std::min(loop.held_dt, parameters.end_time - time);
+        const double dt_max =
+          parameters.max_dt_function ? parameters.max_dt_function->value(Point<1>(time)) : parameters.max_dt_constant;
+        if (dt_max > 0 && dt_max < current_dt)
+          current_dt = dt_max;
+      }
+    if (!(current_dt > 0))
+      current_dt = dt_previous;
+    if (!last)
+      {
+        summary.element_steps += current_dt / (parameters.time_step_factor * critical_dt);
+        // (The step is held within 1 % of the stable one, see above.)
+        if (dt_stable < 0.999999 * critical_dt && current_dt >= 0.98 * parameters.time_step_factor * dt_stable)
+          ++summary.contact_limited_steps;
+      }
+
+    return dt_stable;
+  }
+
+
+  // A progress line (and the status file) at time n.
+  void Simulator::report_progress(RunClock &clock, const bool last)
+  {
+    double &next_progress = loop.next_progress;
+    // Progress: every 'Progress interval' of wall time (rank 0 alone
+    // decides: printing involves no other rank), or every 10 % of the
+    // end time where screen output must compare between runs.
+    const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock.wall_start).count();
+    const bool by_wall = parameters.print_wall_times && parameters.progress_interval > 0;
+    if ((by_wall ? (wall >= clock.next_wall_progress || step_number == 0) :
+                   time >= next_progress - clock.eps) ||
+        last)
+      {
+        const double eta =
+          time > clock.time_start ? wall / (time - clock.time_start) * (parameters.end_time - time) : -1.;
         if (!last)
-          {
-            const double dt_max =
-              parameters.max_dt_function ? parameters.max_dt_function->value(Point<1>(time)) : parameters.max_dt_constant;
-            if (dt_max > 0 && dt_max < current_dt)
-              current_dt = dt_max;
-          }
-        if (!(current_dt > 0))
-          current_dt = dt_previous;
-        if (!last)
-          {
-            summary.element_steps += current_dt / (parameters.time_step_factor * critical_dt);
-            // (The step is held within 1 % of the stable one, see above.)
-            if (dt_stable < 0.999999 * critical_dt && current_dt >= 0.98 * parameters.time_step_factor * dt_stable)
-              ++summary.contact_limited_steps;
-          }
+          write_status("running", time, wall, eta);
+        clock.next_wall_progress = wall + parameters.progress_interval;
+        pcout << "  step " << std::setw(7) << step_number << "  t = " << std::setw(11)
+              << std::setprecision(5) << time << " s  dt = " << std::setw(10)
+              << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
+              << "  E_int = " << std::setw(10) << energies.internal
+              << "  balance = " << std::setw(9) << balance.balance_error;
+        if (parameters.print_wall_times && eta >= 0)
+          pcout << "  left ~" << std::setprecision(3) << eta << " s";
+        pcout << std::endl;
+        while (next_progress <= time + clock.eps)
+          next_progress += 0.1 * parameters.end_time;
+      }
+  }
 
-        // Contact energy of the configuration x^n.
-        energies.contact = 0;
-        for (const auto &r : contact->results())
-          energies.contact += r.energy;
 
-        // The state a next stage starts from: x^n, v^{n-1/2} and F^n, before
-        // the last step synchronises the velocities, so that the stage goes
-        // on with the step this run would have made (bitwise the same as
-        // one run through the stage change).
-        if (last && parameters.checkpoint_at_end)
-          write_checkpoint();
-        // Kinematic contact pairs, now that the step is known (after the
-        // checkpoint: a run resumed from it makes their forces anew).
-        if (apply_kinematic_contact(dt_previous, last ? 0. : current_dt))
-          {
-            energies.contact = 0;
-            for (const auto &r : contact->results())
-              energies.contact += r.energy;
-          }
-        update_velocity(dt_previous, last ? 0. : current_dt);
-        check_health(time, step_number, parameters.time_step_factor * dt_stable);
-        // The end criterion, met at time n, makes n+1 the last time (the
-        // velocities are at n+1/2 already).
-        if (update_summary(time) && !last)
-          quiet_end = true;
-        if (time >= next_history - eps || last)
-          {
-            write_history(time, last ? 0. : current_dt);
-            next_history += parameters.history_interval;
-          }
-        // Progress: every 'Progress interval' of wall time (rank 0 alone
-        // decides: printing involves no other rank), or every 10 % of the
-        // end time where screen output must compare between runs.
-        const double wall =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        const bool by_wall = parameters.print_wall_times && parameters.progress_interval > 0;
-        if ((by_wall ? (wall >= next_wall_progress || step_number == 0) :
-                       time >= next_progress - eps) ||
-            last)
-          {
-            const double eta =
-              time > time_start ? wall / (time - time_start) * (parameters.end_time - time) : -1.;
-            if (!last)
-              write_status("running", time, wall, eta);
-            next_wall_progress = wall + parameters.progress_interval;
-            pcout << "  step " << std::setw(7) << step_number << "  t = " << std::setw(11)
-                  << std::setprecision(5) << time << " s  dt = " << std::setw(10)
-                  << current_dt << " s  E_kin = " << std::setw(10) << energies.kinetic
-                  << "  E_int = " << std::setw(10) << energies.internal
-                  << "  balance = " << std::setw(9) << balance.balance_error;
-            if (parameters.print_wall_times && eta >= 0)
-              pcout << "  left ~" << std::setprecision(3) << eta << " s";
-            pcout << std::endl;
-            while (next_progress <= time + eps)
-              next_progress += 0.1 * parameters.end_time;
-          }
-        if (last)
-          break;
-        if (step_number >= parameters.max_steps)
-          throw NumericalFailure("the run reached 'Maximum number of steps' = " +
-                                 std::to_string(parameters.max_steps) + " at t = " +
-                                 std::to_string(time) + " s");
+  // From time n to n+1: positions, forces, frames and checkpoints.
+  void Simulator::advance(const RunClock &clock)
+  {
+    double &dt_previous = loop.dt_previous;
+    double &next_output = loop.next_output;
+    update_position(current_dt);
+    position.update_ghost_values();
+    velocity.update_ghost_values();
+    time += current_dt;
+    ++step_number;
+    dt_previous = current_dt;
 
-        update_position(current_dt);
-        position.update_ghost_values();
-        velocity.update_ghost_values();
-        time += current_dt;
-        ++step_number;
-        dt_previous = current_dt;
+    zero_forces();
+    critical_dt = compute_internal_forces(dt_previous);
+    apply_contact(dt_previous);
+    condense_forces();
 
-        zero_forces();
-        critical_dt = compute_internal_forces(dt_previous);
-        apply_contact(dt_previous);
-        condense_forces();
+    if (parameters.output_interval > 0 && time >= next_output - clock.eps && time < parameters.end_time - clock.eps)
+      {
+        output_results(time, "solution");
+        next_output += parameters.output_interval;
+      }
 
-        if (parameters.output_interval > 0 && time >= next_output - eps && time < parameters.end_time - eps)
+    // A checkpoint by simulated time, by wall time (rank 0's clock,
+    // shared at the health check) or on SIGTERM / SIGINT, which then
+    // stops the run.
+    if (time >= output.next_checkpoint - clock.eps && time < parameters.end_time - clock.eps)
+      {
+        output.checkpoint_due = true;
+        while (output.next_checkpoint <= time + clock.eps)
+          output.next_checkpoint += parameters.checkpoint_interval;
+      }
+    if (output.checkpoint_due || output.stop_requested)
+      {
+        write_checkpoint();
+        output.checkpoint_due = false;
+        if (output.stop_requested)
           {
-            output_results(time, "solution");
-            next_output += parameters.output_interval;
-          }
-
-        // A checkpoint by simulated time, by wall time (rank 0's clock,
-        // shared at the health check) or on SIGTERM / SIGINT, which then
-        // stops the run.
-        if (time >= output.next_checkpoint - eps && time < parameters.end_time - eps)
-          {
-            output.checkpoint_due = true;
-            while (output.next_checkpoint <= time + eps)
-              output.next_checkpoint += parameters.checkpoint_interval;
-          }
-        if (output.checkpoint_due || output.stop_requested)
-          {
-            write_checkpoint();
-            output.checkpoint_due = false;
-            if (output.stop_requested)
-              {
-                std::ostringstream msg;
-                msg << "interrupted at t = " << time << " s, step " << step_number
-                    << ": checkpoint and frame index written; continue with 'anvil --resume "
-                    << parameters.scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-                    << " process(es)";
-                throw Interrupted(msg.str());
-              }
+            std::ostringstream msg;
+            msg << "interrupted at t = " << time << " s, step " << step_number
+                << ": checkpoint and frame index written; continue with 'anvil --resume "
+                << parameters.scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                << " process(es)";
+            throw Interrupted(msg.str());
           }
       }
+  }
+
+
+  // The last frame, the postprocessors' end (bodies.csv, summary.csv, the
+  // plots) and the run's closing lines.
+  void Simulator::finish_run(const RunClock &clock)
+  {
     position.update_ghost_values();
     velocity.update_ghost_values();
     output_results(time, "solution");
@@ -795,7 +842,7 @@ namespace anvil
       throw OutputError(output.failure.empty() ? "a history file could not be written (see rank 0)" :
                                                  output.failure);
     const double wall_total =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock.wall_start).count();
     // The last frame, bodies.csv, summary.csv, the plots (in the
     // postprocessors' order).
     for (auto &postprocessor : postprocessors)

@@ -186,6 +186,23 @@ namespace anvil
 
     // The explicit step (source/simulator/time_integration.cc)
     void   run_scene(bool resume, const std::string &resume_from);
+    /** The wall clock of a run and the time it started from. */
+    struct RunClock
+    {
+      std::chrono::steady_clock::time_point wall_start;
+      double                                time_start;
+      double                                next_wall_progress;
+      /** The tolerance of time comparisons, 1e-12 of the end time. */
+      double eps;
+    };
+    /** The stages of run_scene(): setup and the starting state; the step
+        from time n (returns the stable step); a progress line; from n to
+        n+1; the end of the run. */
+    void   start_run(bool resume, const std::string &resume_from);
+    double choose_step(bool last);
+    void   report_progress(RunClock &clock, bool last);
+    void   advance(const RunClock &clock);
+    void   finish_run(const RunClock &clock);
     /** The stable step of the current critical element step and the
         contact springs (before the safety factor). */
     double stable_time_step() const;
