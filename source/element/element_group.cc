@@ -3,6 +3,7 @@
  * The explicit element loop. See element_group.h for conventions.
  */
 #include <anvil/element/element_group.h>
+#include <anvil/element/hourglass.h>
 #include <anvil/kinematics/rotation.h>
 #include <anvil/utilities/input_error.h>
 
@@ -959,29 +960,11 @@ namespace anvil::Element
         // viscous force is seed Eq. (44) with alpha = Q rho V^(2/3) c / 4.
         if constexpr (H != HourglassType::none)
           {
-            // With g_ja = Gamma_jK x_Ka and t_jc = g_ja dxi_c/dx_a, the
-            // vectors are gamma_jI = Gamma_jI - t_jc dN_I/dxi_c, so
-            //   h_aj = v_Ia Gamma_jI - t_jc (dv_a/dxi_c)   (Jd at the centroid)
-            //   f_Ia = -r_aj Gamma_jI + (r_aj t_jc) dN_I/dxi_c,
-            // which never forms gamma explicitly.
-            const auto &dN = tables.dN[8];
-            double      t[4][3], h[3][4];
-            for (unsigned int j = 0; j < 4; ++j)
-              {
-                double g[3] = {}, vg[3] = {};
-                for (unsigned int n = 0; n < 8; ++n)
-                  for (unsigned int a = 0; a < 3; ++a)
-                    {
-                      g[a] += tables.Gamma[j][n] * xe[n][a];
-                      vg[a] += tables.Gamma[j][n] * ve[n][a];
-                    }
-                for (unsigned int c = 0; c < 3; ++c)
-                  t[j][c] = g[0] * Jinv_c[c][0] + g[1] * Jinv_c[c][1] +
-                            g[2] * Jinv_c[c][2];
-                for (unsigned int a = 0; a < 3; ++a)
-                  h[a][j] = vg[a] - (t[j][0] * Jd_c[a][0] + t[j][1] * Jd_c[a][1] +
-                                     t[j][2] * Jd_c[a][2]);
-              }
+            // The rates h_aj = v_Ia gamma_jI and, once the resistance r_aj
+            // is known, the forces -r_aj gamma_jI: hourglass_rates() and
+            // add_hourglass_forces() (include/anvil/element/hourglass.h).
+            double t[4][3], h[3][4];
+            hourglass_rates(tables.Gamma, xe, ve, Jinv_c, Jd_c, t, h);
             const double rho = rho0 * reference_volume[e] / volume;
             double       k;
             double       r[3][4];
@@ -1019,16 +1002,7 @@ namespace anvil::Element
                   power += 0.5 * (r_old + r[a][j]) * h[a][j];
                   r_old = r[a][j];
                 }
-            double u[3][3];
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int c = 0; c < 3; ++c)
-                u[a][c] = r[a][0] * t[0][c] + r[a][1] * t[1][c] + r[a][2] * t[2][c] +
-                          r[a][3] * t[3][c];
-            for (unsigned int n = 0; n < 8; ++n)
-              for (unsigned int a = 0; a < 3; ++a)
-                fe[n][a] += u[a][0] * dN[n][0] + u[a][1] * dN[n][1] + u[a][2] * dN[n][2] -
-                            (r[a][0] * tables.Gamma[0][n] + r[a][1] * tables.Gamma[1][n] +
-                             r[a][2] * tables.Gamma[2][n] + r[a][3] * tables.Gamma[3][n]);
+            add_hourglass_forces(tables.Gamma, tables.dN[8], t, r, fe);
             hourglass_energy[e] += power * dt;
             result.hourglass_energy_increment += energy_weight[e] * power * dt;
           }

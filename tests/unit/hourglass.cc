@@ -10,8 +10,17 @@
  * - any affine velocity field v = B x + c produces exactly zero hourglass
  *   force (the FB vectors gamma are orthogonal to linear fields), viscous
  *   and stiffness form.
+ *
+ * And the two named functions of include/anvil/element/hourglass.h on their
+ * own: on a cube, the unit mode's rate is h = 8 exactly (Gamma_j . Gamma_j)
+ * and the other modes' 0; on the distorted element, an affine velocity
+ * field's rates vanish to round-off, and the forces of any resistance sum
+ * to zero and do no work on an affine velocity field (sum_I gamma_jI = 0,
+ * gamma orthogonal to x).
  */
 #include "unit_test.h"
+
+#include <anvil/element/hourglass.h>
 
 using namespace anvil;
 using test::check;
@@ -100,5 +109,103 @@ int main()
       check_below("affine velocity field: hourglass force / that of a hourglass mode of equal speed", fa / fr, 1e-13);
       check_below("affine velocity field: hourglass energy increment [J]", std::abs(r.hourglass_energy_increment), 1e-300);
     }
+  // The named functions on their own. The centroid's derivatives of the
+  // shape functions are sgn_I / 8; J_ac = x_Ia dN_I/dxi_c, Jd_ac = v_Ia
+  // dN_I/dxi_c.
+  {
+    double Gamma[4][8], dN[8][3];
+    for (unsigned int I = 0; I < 8; ++I)
+      {
+        Gamma[0][I] = sgn[I][0] * sgn[I][1];
+        Gamma[1][I] = sgn[I][1] * sgn[I][2];
+        Gamma[2][I] = sgn[I][0] * sgn[I][2];
+        Gamma[3][I] = sgn[I][0] * sgn[I][1] * sgn[I][2];
+        for (unsigned int c = 0; c < 3; ++c)
+          dN[I][c] = 0.125 * sgn[I][c];
+      }
+    const auto centroid_jacobians = [&](const double (&x)[8][3], const double (&v)[8][3], double (&Jinv)[3][3],
+                                        double (&Jd)[3][3]) {
+      double J[3][3] = {};
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            Jd[a][c] = 0;
+            for (unsigned int I = 0; I < 8; ++I)
+              {
+                J[a][c] += x[I][a] * dN[I][c];
+                Jd[a][c] += v[I][a] * dN[I][c];
+              }
+          }
+      // Jinv[c][a] = dxi_c/dx_a, the inverse of J[a][c].
+      const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+      for (unsigned int c = 0; c < 3; ++c)
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            const unsigned int c1 = (c + 1) % 3, c2 = (c + 2) % 3, a1 = (a + 1) % 3, a2 = (a + 2) % 3;
+            Jinv[c][a] = (J[a1][c1] * J[a2][c2] - J[a1][c2] * J[a2][c1]) / det;
+          }
+    };
+    std::printf("== hourglass_rates and add_hourglass_forces (include/anvil/element/hourglass.h)\n");
+    // A cube of side 2 (x = xi): t = 0, h_aj = Gamma_j . v_a.
+    double cube[8][3], distorted[8][3];
+    for (unsigned int I = 0; I < 8; ++I)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          cube[I][a]      = sgn[I][a];
+          distorted[I][a] = sgn[I][a] + 2. * moves[I][a];
+        }
+    double worst_mode = 0;
+    for (unsigned int j = 0; j < 4; ++j)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          double v[8][3] = {}, Jinv[3][3], Jd[3][3], t[4][3], h[3][4];
+          for (unsigned int I = 0; I < 8; ++I)
+            v[I][a] = Gamma[j][I];
+          centroid_jacobians(cube, v, Jinv, Jd);
+          Element::hourglass_rates(Gamma, cube, v, Jinv, Jd, t, h);
+          for (unsigned int b = 0; b < 3; ++b)
+            for (unsigned int k = 0; k < 4; ++k)
+              worst_mode = std::max(worst_mode, std::abs(h[b][k] - (b == a && k == j ? 8. : 0.)));
+        }
+    check_below("cube, the 12 unit modes: largest |h_bk - 8 delta_ab delta_jk|", worst_mode, 1e-14);
+
+    const double B[3][3] = {{1.3, -0.7, 0.4}, {0.2, 0.9, -1.1}, {-0.5, 0.6, 0.8}};
+    const double c0[3]   = {2., -1., 0.5};
+    double       v[8][3], Jinv[3][3], Jd[3][3], t[4][3], h[3][4];
+    for (unsigned int I = 0; I < 8; ++I)
+      for (unsigned int a = 0; a < 3; ++a)
+        v[I][a] = c0[a] + B[a][0] * distorted[I][0] + B[a][1] * distorted[I][1] + B[a][2] * distorted[I][2];
+    centroid_jacobians(distorted, v, Jinv, Jd);
+    Element::hourglass_rates(Gamma, distorted, v, Jinv, Jd, t, h);
+    double worst_affine = 0;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int j = 0; j < 4; ++j)
+        worst_affine = std::max(worst_affine, std::abs(h[a][j]));
+    // (The scale: a unit mode's rate, 8.)
+    check_below("distorted element, affine velocity field: largest |h_aj| over a unit mode's 8", worst_affine / 8.,
+                1e-14);
+
+    const double r[3][4] = {{0.7, -1.2, 0.3, 2.1}, {-0.4, 0.9, 1.6, -0.8}, {1.1, 0.2, -0.6, 0.5}};
+    double       f[8][3] = {};
+    Element::add_hourglass_forces(Gamma, dN, t, r, f);
+    double sum[3] = {}, work = 0, size = 0;
+    for (unsigned int I = 0; I < 8; ++I)
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          sum[a] += f[I][a];
+          work += f[I][a] * v[I][a];
+          size = std::max(size, std::abs(f[I][a]));
+        }
+    check_below("distorted element, forces of an arbitrary resistance: largest |sum_I f_Ia| over max |f|",
+                std::max({std::abs(sum[0]), std::abs(sum[1]), std::abs(sum[2])}) / size, 1e-14);
+    double vmax = 0;
+    for (unsigned int I = 0; I < 8; ++I)
+      for (unsigned int a = 0; a < 3; ++a)
+        vmax = std::max(vmax, std::abs(v[I][a]));
+    check_below("... their work on the affine velocity field over max |f| max |v|", std::abs(work) / (size * vmax),
+                1e-14);
+  }
   return test::finish();
 }
