@@ -168,7 +168,9 @@ namespace anvil
       constrained_velocity_old[k] = v[constrained_dofs[k]];
     if (time_dependent)
       {
-        std::vector<Tensor<1, 3>> at_n(conditions.size()), half(conditions.size());
+        auto &at_n = condition_velocity_n, &half = condition_velocity_half;
+        at_n.resize(conditions.size());
+        half.resize(conditions.size());
         for (unsigned int b = 0; b < conditions.size(); ++b)
           if (conditions[b].time_dependent())
             {

@@ -258,13 +258,8 @@ namespace anvil::Contact
     VectorType       &force            = get_force();
     const VectorType &mass             = get_mass();
     const auto       &rigid_dof        = get_rigid_dof();
-    const auto       &constrained      = get_constraints().held_dofs();
-    const auto       &held_velocity    = get_constraints().held_velocities();
+    const auto       &constraints      = get_constraints();
     const MPI_Comm    mpi_communicator = get_mpi_communicator();
-    // Per owned dof, its constraint (k + 1; 0: free).
-    std::vector<unsigned int> held(position.locally_owned_size(), 0);
-    for (unsigned int k = 0; k < constrained.size(); ++k)
-      held[constrained[k]] = k + 1;
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         if (inactive[p] || !pairs[p]->kinematic())
@@ -284,11 +279,9 @@ namespace anvil::Contact
               xs[3 * i + d]        = position.local_element(l);
               fs[3 * i + d]        = force.local_element(l);
               const bool rigid     = !rigid_dof.empty() && rigid_dof[l];
-              if (held[l] > 0)
-                vs[3 * i + d] = held_velocity[held[l] - 1];
-              else
-                vs[3 * i + d] = velocity.local_element(l);
-              ws[3 * i + d] = rigid || held[l] > 0 ? 0. : 1. / mass.local_element(l);
+              const bool held      = constraints.is_held(l);
+              vs[3 * i + d]        = held ? constraints.prescribed_velocity(l) : velocity.local_element(l);
+              ws[3 * i + d]        = rigid || held ? 0. : 1. / mass.local_element(l);
             }
         Utilities::MPI::sum(xs, mpi_communicator, xs);
         Utilities::MPI::sum(vs, mpi_communicator, vs);

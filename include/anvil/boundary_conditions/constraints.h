@@ -105,25 +105,21 @@ namespace anvil
     {
       return gravity;
     }
-    /** The held dofs (local indices of owned dofs), their prescribed
-        velocities, and per owned dof k + 1 for held dof k (0: free). */
-    const std::vector<unsigned int> &held_dofs() const
-    {
-      return constrained_dofs;
-    }
-    const std::vector<double> &held_velocities() const
-    {
-      return constrained_velocity;
-    }
+    /** Whether the owned dof @p i is held. */
     bool is_held(const unsigned int i) const
     {
       return i < held_index.size() && held_index[i] > 0;
+    }
+    /** The velocity held dof @p i is held at over the step (v^{n+1/2}). */
+    double prescribed_velocity(const unsigned int i) const
+    {
+      return constrained_velocity[held_index[i] - 1];
     }
     /** The velocity of held dof @p i at time n (between the velocity
         and the position update: the prescribed velocity of t^n). */
     double held_velocity(const unsigned int i) const
     {
-      return time_dependent ? velocity_n[held_index[i] - 1] : constrained_velocity[held_index[i] - 1];
+      return velocity_n[held_index[i] - 1];
     }
     /** The damping force on owned dof @p i this step (0 without). */
     double damping_force(const unsigned int i) const
@@ -174,9 +170,11 @@ namespace anvil
         sums at the last history row, and the peaks of their magnitudes. */
     std::vector<double> bc_reaction, reaction_sums, peak_reaction;
     bool                time_dependent = false;
-    /** With a time-dependent condition: each held dof's prescribed
-        velocity of t^n (the probes' velocity at n). */
-    std::vector<double> velocity_n;
+    /** Each held dof's prescribed velocity of t^n (the probes' velocity
+        at n), and each condition's velocity at t^n and t^{n+1/2} (the
+        time-dependent ones', evaluated once a step). */
+    std::vector<double>               velocity_n;
+    std::vector<dealii::Tensor<1, 3>> condition_velocity_n, condition_velocity_half;
   };
 
 
