@@ -139,6 +139,26 @@ def write_scene(path, include=None, text=""):
     return path
 
 
+def overrides_text(overrides):
+    """Scene-file text that sets OVERRIDES, a dict of 'Subsection/.../Entry':
+    value (the form of anvil's --set)."""
+    text = ""
+    for key, value in overrides.items():
+        *sections, entry = key.split("/")
+        text += "".join(f"subsection {s}\n" for s in sections) + f"set {entry} = {value}\n" + "end\n" * len(sections)
+    return text
+
+
+def test_scene(args, path, name, overrides=None):
+    """Write NAME.prm into the work directory: the scene PATH (relative to
+    the source tree, e.g. tests/contact/friction_block.prm) as a user would
+    run it, with OVERRIDES (see overrides_text). Its results go to
+    output/NAME."""
+    return write_scene(os.path.join(args.work_dir, name + ".prm"),
+                       include=os.path.join(os.path.abspath(args.source_dir), path),
+                       text=overrides_text(overrides or {}))
+
+
 def read_csv(path):
     """Columns of a CSV file as a dict of lists: floats, or strings for
     columns that are not numbers (names)."""

@@ -1,18 +1,9 @@
 #include <anvil/mesh/body.h>
-#include <anvil/mesh/mesh_file.h>
 #include <anvil/utilities/input_error.h>
 
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
 
-#include <deal.II/grid/tria_description.h>
-
 #include <algorithm>
-#include <fstream>
-#include <iomanip>
-#include <set>
-#include <sstream>
 
 namespace anvil
 {
@@ -23,79 +14,10 @@ namespace anvil
     using namespace dealii;
     prm.enter_subsection("Mesh");
     {
-      prm.declare_entry(
-        "Source",
-        "box",
-        Patterns::Selection("box|cylinder|sphere|file"),
-        "Where the mesh comes from: 'box' (a subdivided rectangular block "
-        "between two corners; boundary ids 0..5 on the faces x-, x+, y-, "
-        "y+, z-, z+), 'cylinder' (axis along x, centred on the origin "
-        "before the offset; boundary ids 0 hull, 1 at x-, 2 at x+), "
-        "'sphere' (a ball of 'Radius' centred on the origin before the "
-        "offset; boundary id 0), or "
-        "'file' (ABAQUS .inp with parts, instances, sets and surfaces, or "
-        "ASCII Gmsh .msh 2.2/4.1 with physical groups; named surfaces "
-        "become boundary ids, see 'Region').");
-      prm.declare_entry("Lower corner",
-                        "0, 0, 0",
-                        Patterns::List(Patterns::Double(), 3, 3),
-                        "Box: lowest corner. Units: m.");
-      prm.declare_entry("Upper corner",
-                        "1, 1, 1",
-                        Patterns::List(Patterns::Double(), 3, 3),
-                        "Box: highest corner. Units: m.");
-      prm.declare_entry("Subdivisions",
-                        "1, 1, 1",
-                        Patterns::List(Patterns::Integer(1), 3, 3),
-                        "Box: number of elements along x, y, z before "
-                        "refinement. Units: none.");
-      prm.declare_entry("Grading",
-                        "1, 1, 1",
-                        Patterns::List(Patterns::Double(0.), 3, 3),
-                        "Box: ratio of successive element sizes along x, y, "
-                        "z, from the lower to the upper corner (a geometric "
-                        "mesh bias; 1: uniform, < 1: finer towards the upper "
-                        "corner). Units: none.");
-      prm.declare_entry("Radius",
-                        "0.5",
-                        Patterns::Double(0.),
-                        "Cylinder: radius. Units: m.");
-      prm.declare_entry("Length",
-                        "1",
-                        Patterns::Double(0.),
-                        "Cylinder: length along x. Units: m.");
-      prm.declare_entry("Axial subdivisions",
-                        "1",
-                        Patterns::Integer(1),
-                        "Cylinder: elements along the axis before "
-                        "refinement. Units: none.");
-      prm.declare_entry("Section refinements",
-                        "0",
-                        Patterns::Integer(0, 6),
-                        "Cylinder: times every element is split into four "
-                        "across the axis (not along it), besides 'Global "
-                        "refinements'. The hull has 4 x 2^(section + global "
-                        "refinements) faces, their corners on the circle; the "
-                        "log gives the section's area against pi r^2. Units: "
-                        "none.");
-      prm.declare_entry("File name",
-                        "",
-                        Patterns::Anything(),
-                        "File: mesh file (.msh or .inp), relative to the "
-                        "scene file's directory.");
-      prm.declare_entry("Region",
-                        "",
-                        Patterns::Anything(),
-                        "File: the cells this body takes, as a comma-separated "
-                        "list of names the file gives to groups of cells "
-                        "(ABAQUS: instances, parts, element sets, 'INSTANCE.SET'; "
-                        "Gmsh: physical volumes by name or number); matched "
-                        "without regard to case. Empty: every cell of the file.");
-      prm.declare_entry("Scale",
-                        "1",
-                        Patterns::Double(0.),
-                        "File: factor applied to the coordinates read "
-                        "(e.g. 0.001 for a mesh in mm). Units: none.");
+      prm.declare_entry("Source",
+                        "box",
+                        Patterns::Selection(MeshSources::Registry::names()),
+                        MeshSources::Registry::documentation("Where the mesh comes from:"));
       prm.declare_entry("Offset",
                         "0, 0, 0",
                         Patterns::List(Patterns::Double(), 3, 3),
@@ -106,6 +28,7 @@ namespace anvil
                         Patterns::Integer(0, 8),
                         "Times every element is split into eight. "
                         "Units: none.");
+      MeshSources::Registry::declare_parameters(prm, false);
     }
     prm.leave_subsection();
 
@@ -333,68 +256,15 @@ namespace anvil
     name = body_name;
     prm.enter_subsection("Mesh");
     {
-      const std::string where = "subsection 'Body " + name + "/Mesh'";
-      mesh_source             = prm.get("Source");
-      lower       = dealii::Point<3>(three_numbers(prm.get("Lower corner"), "Lower corner", where));
-      upper       = dealii::Point<3>(three_numbers(prm.get("Upper corner"), "Upper corner", where));
-      subdivisions.clear();
-      for (const auto &s :
-           dealii::Utilities::split_string_list(prm.get("Subdivisions")))
-        subdivisions.push_back(dealii::Utilities::string_to_int(s));
-      grading            = three_numbers(prm.get("Grading"), "Grading", where);
-      radius             = prm.get_double("Radius");
-      length             = prm.get_double("Length");
-      axial_subdivisions = prm.get_integer("Axial subdivisions");
-      section_refinements = prm.get_integer("Section refinements");
-      if (mesh_source != "cylinder" && section_refinements > 0)
-        throw InputError(where + ": 'Section refinements' needs 'Source = cylinder'");
-      file_name          = prm.get("File name");
-      if (!file_name.empty() && file_name[0] != '/')
-        file_name = scene_directory + "/" + file_name;
-      region.clear();
-      for (const auto &r : dealii::Utilities::split_string_list(prm.get("Region")))
-        if (!r.empty())
-          region.push_back(MeshFile::key(r));
-      if (mesh_source != "file" && !region.empty())
-        throw InputError(where + ": 'Region' needs 'Source = file'");
-      scale       = prm.get_double("Scale");
-      offset      = three_numbers(prm.get("Offset"), "Offset", where);
-      refinements = prm.get_integer("Global refinements");
+      const std::string where  = "subsection 'Body " + name + "/Mesh'";
+      const std::string source = prm.get("Source");
+      offset                   = three_numbers(prm.get("Offset"), "Offset", where);
+      refinements              = prm.get_integer("Global refinements");
+      ignored_entries = MeshSources::foreign_entries(prm, source, {"Source", "Offset", "Global refinements"});
+      mesh_source = MeshSources::Registry::get(source, where + ": entry 'Source'").create();
+      mesh_source->parse_parameters(prm, {where, name, scene_directory, refinements});
     }
     prm.leave_subsection();
-
-    // About 4 kB per hexahedron: deal.II's cell, vertices and degrees of
-    // freedom, and Anvil's state.
-    const double fine = std::pow(8., refinements);
-    check_size("subsection 'Body " + name + "/Mesh'",
-               mesh_source == "box" ? "'Subdivisions' and 'Global refinements'" :
-                                      "'Axial subdivisions' and 'Global refinements'",
-               "elements",
-               (mesh_source == "box" ? double(subdivisions[0]) * subdivisions[1] * subdivisions[2] :
-                                       std::max(1., double(axial_subdivisions)) * 12. *
-                                         std::pow(4., section_refinements)) *
-                 fine,
-               4096.);
-    if (mesh_source == "box")
-      for (unsigned int d = 0; d < 3; ++d)
-        if (!(upper[d] > lower[d]))
-          throw InputError("subsection 'Body " + name +
-                           "/Mesh': 'Upper corner' must exceed 'Lower "
-                           "corner' in every component");
-    if (mesh_source == "sphere" && radius <= 0)
-      throw InputError("subsection 'Body " + name + "/Mesh': sphere needs a positive 'Radius'");
-    if (mesh_source == "cylinder" && (radius <= 0 || length <= 0))
-      throw InputError("subsection 'Body " + name +
-                       "/Mesh': cylinder needs positive 'Radius' and 'Length'");
-    if (mesh_source == "file")
-      {
-        if (file_name.empty())
-          throw InputError("subsection 'Body " + name +
-                           "/Mesh': 'Source = file' needs 'File name'");
-        if (!std::ifstream(file_name))
-          throw InputError("subsection 'Body " + name + "/Mesh': mesh file '" +
-                           file_name + "' cannot be opened");
-      }
 
     prm.enter_subsection("Material");
     material                     = MaterialModel::create(prm);
@@ -477,233 +347,16 @@ namespace anvil
 
   void Body::create_mesh(dealii::Triangulation<3> &tria, MeshNames *names) const
   {
-    using namespace dealii;
-    if (mesh_source == "box")
-      {
-        // Element sizes in geometric progression along each axis.
-        std::vector<std::vector<double>> steps(3);
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            double size = 1, total = 0;
-            for (unsigned int i = 0; i < subdivisions[d]; ++i, size *= grading[d])
-              {
-                steps[d].push_back(size);
-                total += size;
-              }
-            for (auto &h : steps[d])
-              h *= (upper[d] - lower[d]) / total;
-          }
-        GridGenerator::subdivided_hyper_rectangle(tria, steps, lower, upper, /*colorize=*/true);
-      }
-    else if (mesh_source == "sphere")
-      GridGenerator::hyper_ball_balanced(tria, Point<3>(), radius);
-    else if (mesh_source == "cylinder")
-      {
-        // The section: deal.II's disk of five cells refined along its
-        // circle (its corners stay on it), then extruded along the axis
-        // (here z, turned onto x below). Refinement happens here, in the
-        // section (section and global refinements) and along the axis
-        // (global ones), so the cells stay conforming.
-        Triangulation<2> disk, flat;
-        GridGenerator::hyper_ball(disk, Point<2>(), radius);
-        disk.refine_global(section_refinements + refinements);
-        GridGenerator::flatten_triangulation(disk, flat);
-        const unsigned int along = axial_subdivisions * (1u << refinements);
-        GridGenerator::extrude_triangulation(flat, along + 1, length, tria);
-        const double half = 0.5 * length;
-        GridTools::transform([half](const Point<3> &p) { return Point<3>(p[2] - half, p[0], p[1]); },
-                             tria);
-        for (const auto &cell : tria.active_cell_iterators())
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              {
-                const double x = cell->face(f)->center()[0];
-                cell->face(f)->set_boundary_id(x < -half * (1. - 1e-12) ? 1 :
-                                               x > half * (1. - 1e-12)  ? 2 :
-                                                                          0);
-              }
-        if (names)
-          {
-            // The hull's faces are planar, their corners on the circle: the
-            // section is a regular polygon.
-            const double n    = 4. * std::pow(2., section_refinements + refinements);
-            const double area = 0.5 * n * std::sin(2. * M_PI / n) / M_PI;
-            std::ostringstream info;
-            info << "cylinder section: a " << n << "-gon with its corners on the circle, area "
-                 << std::setprecision(4) << 100. * (1. - area) << " % below pi r^2";
-            names->info = info.str();
-          }
-      }
-    else
-      create_mesh_from_file(tria, names);
-    if (mesh_source != "cylinder") // refined in the section and along the axis above
-      tria.refine_global(refinements);
+    mesh_source->create(tria, refinements, names);
     if (offset.norm() > 0)
-      GridTools::shift(offset, tria);
+      dealii::GridTools::shift(offset, tria);
     if (names)
-      for (auto &set : names->node_sets)
-        for (auto &x : set.second)
-          x = x * scale + offset;
-  }
-
-
-  // The cells of the file's 'Region' (all if empty) become this body's
-  // mesh, with the file's surfaces as boundary ids on their faces that lie
-  // on its boundary.
-  void Body::create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const
-  {
-    using namespace dealii;
-    const MeshFile::Contents file  = MeshFile::read(file_name);
-    const std::string        where = "subsection 'Body " + name + "/Mesh': ";
-    std::vector<bool>        take(file.cells.size(), region.empty());
-    for (const auto &r : region)
       {
-        const auto set = file.cell_sets.find(r);
-        if (set == file.cell_sets.end())
-          throw InputError(where + "'Region' names '" + printable_excerpt(r) +
-                           "', which mesh file '" + file_name +
-                           "' does not define (its groups of cells: " +
-                           MeshFile::names_of(file.cell_sets) + ")");
-        for (const unsigned int c : set->second)
-          take[c] = true;
-      }
-
-    std::vector<unsigned int> index(file.vertices.size(), numbers::invalid_unsigned_int);
-    std::vector<Point<3>>     vertices;
-    std::vector<CellData<3>>  cells;
-    // Faces of the cells taken, by their sorted vertices: a face two cells
-    // share is interior and keeps no boundary id.
-    std::map<std::array<unsigned int, 4>, unsigned int> face_count;
-    auto sorted = [](std::array<unsigned int, 4> v) {
-      std::sort(v.begin(), v.end());
-      return v;
-    };
-    for (unsigned int c = 0; c < file.cells.size(); ++c)
-      if (take[c])
-        {
-          CellData<3> cell(8);
-          for (unsigned int v = 0; v < 8; ++v)
-            {
-              const unsigned int g = file.cells[c][v];
-              if (index[g] == numbers::invalid_unsigned_int)
-                {
-                  index[g] = vertices.size();
-                  vertices.push_back(file.vertices[g]);
-                }
-              cell.vertices[v] = index[g];
-            }
-          cells.push_back(cell);
-          for (const unsigned int f : GeometryInfo<3>::face_indices())
-            {
-              std::array<unsigned int, 4> face;
-              for (unsigned int v = 0; v < 4; ++v)
-                face[v] = file.cells[c][GeometryInfo<3>::face_to_cell_vertices(f, v)];
-              ++face_count[sorted(face)];
-            }
-        }
-    std::map<std::array<unsigned int, 4>, CellData<2>> boundary;
-    std::set<unsigned int>                            ids_on_body;
-    for (const auto &face : file.faces)
-      if (take[face.cell] && face_count[sorted(face.vertices)] == 1)
-        {
-          CellData<2> quad(4);
-          for (unsigned int v = 0; v < 4; ++v)
-            quad.vertices[v] = index[face.vertices[v]];
-          quad.boundary_id             = face.boundary_id;
-          boundary[sorted(face.vertices)] = quad;
-          ids_on_body.insert(face.boundary_id);
-        }
-    SubCellData subcell;
-    for (const auto &b : boundary)
-      subcell.boundary_quads.push_back(b.second);
-
-    try
-      {
-        // Every corner of every cell must have a positive Jacobian: a cell
-        // written the other way round (all eight negative) is turned, a
-        // flat or twisted one (mixed signs, or zero) would have no mass or
-        // a negative volume.
-        std::vector<unsigned int> taken;
-        for (unsigned int c = 0; c < file.cells.size(); ++c)
-          if (take[c])
-            taken.push_back(c);
-        auto corner_signs = [&](const CellData<3> &cell, unsigned int &positive) {
-          positive = 0;
-          for (unsigned int corner = 0; corner < 8; ++corner)
-            {
-              Tensor<2, 3> J;
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  const unsigned int bit  = 1u << d;
-                  const Tensor<1, 3> edge = vertices[cell.vertices[corner ^ bit]] -
-                                            vertices[cell.vertices[corner]];
-                  for (unsigned int e = 0; e < 3; ++e)
-                    J[e][d] = (corner & bit) ? -edge[e] : edge[e];
-                }
-              const double det = determinant(J);
-              if (det > 0)
-                ++positive;
-              else if (!(det < 0))
-                return false;
-            }
-          return true;
-        };
-        for (unsigned int i = 0; i < cells.size(); ++i)
-          {
-            unsigned int positive = 0;
-            bool         nonzero  = corner_signs(cells[i], positive);
-            if (nonzero && positive == 0)
-              {
-                // Mirrored: swap the two ends along the cell's x.
-                for (unsigned int v = 0; v < 8; v += 2)
-                  std::swap(cells[i].vertices[v], cells[i].vertices[v + 1]);
-                nonzero = corner_signs(cells[i], positive);
-              }
-            if (!nonzero || positive != 8)
-              throw InputError("mesh file '" + file_name + "': element " +
-                               std::to_string(file.labels.empty() ? long(taken[i]) :
-                                                                    file.labels[taken[i]]) +
-                               " (body '" + name + "') is flat or twisted: the Jacobian "
-                               "is not positive at all its corners");
-          }
-        GridTools::consistently_order_cells(cells);
-        tria.create_triangulation(vertices, cells, subcell);
-      }
-    catch (const ExceptionBase &e)
-      {
-        throw InputError("mesh file '" + file_name + "' (body '" + name +
-                         "'): not a valid hexahedral mesh: " + one_line_message(e).substr(0, 300));
-      }
-    if (scale != 1.)
-      GridTools::scale(scale, tria);
-
-    if (!names)
-      return;
-    for (const auto &s : file.surfaces)
-      if (ids_on_body.count(s.second))
-        names->surfaces[s.first] = s.second;
-    for (const auto &s : file.node_sets)
-      {
-        std::vector<Point<3>> positions;
-        for (const unsigned int v : s.second)
-          if (index[v] != numbers::invalid_unsigned_int)
-            positions.push_back(file.vertices[v]);
-        if (!positions.empty())
-          names->node_sets[s.first] = positions;
-      }
-    names->note.clear();
-    if (!file.skipped.empty())
-      names->note = "mesh file '" + file_name + "': skipped " + file.skipped +
-                    " (a scene takes from a mesh file its mesh, sets and surfaces only)";
-    if (region.empty() && file.regions.size() > 1)
-      {
-        std::string list;
-        for (const auto &r : file.regions)
-          list += (list.empty() ? "" : ", ") + r;
-        names->note += std::string(names->note.empty() ? "" : "; ") + "mesh file '" + file_name +
-                       "' holds " + std::to_string(file.regions.size()) + " regions (" +
-                       printable_excerpt(list) +
-                       "), all taken as this one body ('Region' takes one)";
+        for (auto &set : names->node_sets)
+          for (auto &x : set.second)
+            x = x + offset;
+        for (const auto &sentence : ignored_entries)
+          names->note += (names->note.empty() ? "" : "; ") + sentence;
       }
   }
 } // namespace anvil

@@ -1,5 +1,6 @@
 """Contact between two meshes, evaluated where the slave nodes are owned:
-np = 2, 3 and 4 against np = 1.
+np = 2, 3 and 4 against np = 1 (tests/contact/distributed_pair.prm and
+tests/contact/perforation.prm).
 
 A steel block (14 x 14 x 4 elements) slides at (3, 1, -20) m/s onto a
 larger, coarser one (6 x 6 x 3), off-centre, with Coulomb friction (mu_s =
@@ -34,40 +35,13 @@ Checks:
    the search are made anew).
 """
 import os
-from anvil_test import (Checker, arguments, elastic_box_body, max_relative_difference, read_csv, run_anvil,
-                        steel_box_body, write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 from anvil_vtu import arrays, read_grid  # (anvil_test puts scripts/ on the path)
 
 args = arguments()
 c = Checker("contact between two meshes on 1-4 processes")
 
-scene = write_scene(os.path.join(args.work_dir, "blocks.prm"), text=(
-    "set Bodies = lower, upper\nset Contact pairs = press\nset Probes = a, b\n"
-    + elastic_box_body("lower", (0, 0, 0), (1, 1, 0.3), (6, 6, 3), 7850, 2.06e11, 0.3)
-    + elastic_box_body("upper", (0.23, 0.17, 0.3001), (0.83, 0.77, 0.6), (14, 14, 4), 7850, 2.06e11, 0.3)
-    + """subsection Body upper
-  set Initial velocity = 3, 1, -20
-end
-subsection Contact pair press
-  set Algorithm   = penalty
-  set First body  = lower
-  set Second body = upper
-  set Static friction coefficient  = 0.3
-  set Dynamic friction coefficient = 0.2
-end
-subsection Probe a
-  set Point = 0.5, 0.5, 0.3
-end
-subsection Probe b
-  set Point = 0.53, 0.47, 0.3001
-end
-subsection Simulation
-  set End time = 4e-4
-  set History interval = 1e-6
-  set Output interval = 4e-4
-  set Print wall times = false
-end
-"""))
+scene = test_scene(args, "tests/contact/distributed_pair.prm", "blocks")
 
 runs = {}
 for np in (1, 2, 3, 4):
@@ -131,32 +105,7 @@ differ = [n for n in ("contact_press.csv", "probe_a.csv", "probe_b.csv", "moment
 c.check_true("resumed: five histories byte for byte those of the uninterrupted run", not differ, ", ".join(differ))
 
 # A bar through an eroding plate, one and three processes.
-perforation = write_scene(os.path.join(args.work_dir, "perforation.prm"), text="""
-set Bodies = plate, bar
-set Contact pairs = hit
-set Boundary conditions = rim
-subsection Simulation
-  set End time = 1.5e-4
-  set History interval = 2e-6
-  set Output interval = 1.5e-4
-  set Print wall times = false
-end
-""" + steel_box_body("plate", (-0.02, -0.02, 0), (0.02, 0.02, 0.004), (16, 16, 2), erosion=True)
-    + steel_box_body("bar", (-0.005, -0.004, 0.0041), (0.005, 0.006, 0.03), (4, 4, 10)) + """subsection Body bar
-  set Initial velocity = 20, 0, -600
-end
-subsection Boundary condition rim
-  set Body = plate
-  set Boundary ids = 0, 1, 2, 3
-end
-subsection Contact pair hit
-  set Algorithm   = penalty
-  set First body  = plate
-  set Second body = bar
-  set Static friction coefficient  = 0.2
-  set Dynamic friction coefficient = 0.1
-end
-""")
+perforation = test_scene(args, "tests/contact/perforation.prm", "perforation")
 eroded = {}
 for np in (1, 3):
     work = os.path.join(args.work_dir, f"perforation_np{np}")

@@ -34,90 +34,15 @@ an elastic block on a fixed rigid plane.
    time and distance within 2 %, balance below 1 %.
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("friction block on a rigid plane")
 g = 9.81
 
 
-def scene(name, gravity, v0, mu_s, mu_d, decay, end_time, damping=0, factor=0.9,
-          deformable_plane=False, height=0.1):
-    plane_material = """    set Model = elastic
-    subsection elastic
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0.3
-    end""" if deformable_plane else """    set Model = rigid
-    subsection rigid
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0.3
-    end"""
-    extra = """set Boundary conditions = base
-subsection Boundary condition base
-  set Body = plane
-  set Boundary ids = 4
-end""" if deformable_plane else ""
-    return write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Elastic block on a rigid plane under gravity (friction test).
-set Bodies = plane, block
-set Contact pairs = floor
-set Probes = corner
-{extra}
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 1e-3
-  set Gravity = {gravity}
-  set Time step safety factor = {factor}
-  set Print wall times = false
-end
-subsection Body plane
-  subsection Mesh
-    set Lower corner = -0.2, -0.2, -0.05
-    set Upper corner = 0.6, 0.3, 0
-    set Subdivisions = 16, 10, 1
-  end
-  subsection Material
-{plane_material}
-  end
-end
-subsection Body block
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.1, 0.1, {height}
-    set Subdivisions = 2, 2, 2
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = {v0}, 0, 0
-end
-subsection Contact pair floor
-  set Algorithm = penalty
-  set First body = plane
-  set Second body = block
-  set Symmetric = {'true' if deformable_plane else 'false'}
-  set Static friction coefficient = {mu_s}
-  set Dynamic friction coefficient = {mu_d}
-  set Friction decay coefficient = {decay}
-  set Normal damping = {damping}
-end
-subsection Probe corner
-  set Body = block
-  set Point = 0, 0, 0
-end
-""")
-
-
-def run(name, np=1, **kw):
-    prm = scene(name, **kw)
+def run(name, np=1, base="friction_block.prm", **overrides):
+    prm = test_scene(args, "tests/contact/" + base, name, overrides)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"{name} (np = {np}): anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()
@@ -126,7 +51,7 @@ def run(name, np=1, **kw):
 
 
 mu, v0 = 0.3, 1.0
-slide = run("slide", gravity=f"0, 0, {-g}", v0=v0, mu_s=mu, mu_d=mu, decay=0, end_time=0.45)
+slide = run("slide")
 t, px = slide["momentum"]["time"], slide["momentum"]["block_px"]
 stop = next(i for i in range(len(t)) if px[i] <= 1e-3 * px[0])
 c.check("stopping time [s]", t[stop], v0 / (mu * g), 0.02, relative=True)
@@ -136,14 +61,13 @@ c.check_below("largest energy balance error", max(e["balance_error"]), 0.01)
 mass = 1000 * 0.1 ** 3
 c.check("friction energy / initial kinetic energy", e["friction"][-1], 0.5 * mass * v0 ** 2, 0.03, relative=True)
 
-par = run("slide_np2", np=2, gravity=f"0, 0, {-g}", v0=v0, mu_s=mu, mu_d=mu, decay=0, end_time=0.45)
+par = run("slide_np2", np=2)
 c.check_below("np = 2 against np = 1: largest relative difference of energy.csv",
               max_relative_difference(e, par["energy"]), 1e-8)
 
 # Friction in both passes of the symmetric method, between two deformable
 # bodies (the plane now an elastic slab fixed at its base), in parallel.
-soft = run("slide_soft", np=2, gravity=f"0, 0, {-g}", v0=v0, mu_s=mu, mu_d=mu, decay=0,
-           end_time=0.45, deformable_plane=True)
+soft = run("slide_soft", np=2, base="friction_slab.prm")
 t, px = soft["momentum"]["time"], soft["momentum"]["block_px"]
 stop = next(i for i in range(len(t)) if px[i] <= 1e-3 * px[0])
 c.check("symmetric, deformable slab (np = 2): stopping time [s]", t[stop], v0 / (mu * g), 0.02, relative=True)
@@ -151,9 +75,16 @@ c.check("symmetric, deformable slab (np = 2): stopping distance [m]", soft["prob
         v0 ** 2 / (2 * mu * g), 0.02, relative=True)
 c.check_below("symmetric, deformable slab: largest energy balance error", max(soft["energy"]["balance_error"]), 0.01)
 
-# Static against dynamic friction: a slope of tangential gravity.
-stuck = run("stuck", gravity=f"{0.4 * g}, 0, {-g}", v0=0, mu_s=0.5, mu_d=0.3, decay=100, end_time=0.3,
-            damping=0.2, factor=0.7, height=0.05)
+# Static against dynamic friction: a slope of tangential gravity on a
+# flatter block at rest, with normal damping.
+def on_slope(fraction):
+    return {"Simulation/Gravity": f"{fraction * g}, 0, {-g}", "Simulation/End time": 0.3,
+            "Simulation/Time step safety factor": 0.7, "Body block/Initial velocity": "0, 0, 0",
+            "Body block/Mesh/Upper corner": "0.1, 0.1, 0.05", "Contact pair floor/Static friction coefficient": 0.5,
+            "Contact pair floor/Friction decay coefficient": 100, "Contact pair floor/Normal damping": 0.2}
+
+
+stuck = run("stuck", **on_slope(0.4))
 slid = 0.5 * (0.4 - 0.3) * g * 0.3 ** 2  # had mu_d alone held it
 print(f"  (sliding at mu_d the block would move {slid:.4f} m at {(0.4 - 0.3) * g * 0.3:.3f} m/s)")
 c.check_below("0.4 m g < mu_s m g: |displacement| of the block after 0.3 s / that at mu_d",
@@ -161,8 +92,7 @@ c.check_below("0.4 m g < mu_s m g: |displacement| of the block after 0.3 s / tha
 flat = mass / 2
 c.check_below("0.4 m g < mu_s m g: velocity at 0.3 s / that at mu_d",
               abs(stuck["momentum"]["block_px"][-1]) / flat / ((0.4 - 0.3) * g * 0.3), 0.01)
-slips = run("slips", gravity=f"{0.6 * g}, 0, {-g}", v0=0, mu_s=0.5, mu_d=0.3, decay=100, end_time=0.3,
-            damping=0.2, factor=0.7, height=0.05)
+slips = run("slips", **on_slope(0.6))
 c.check_below("sticking and sliding with damping: largest energy balance error",
               max(max(stuck["energy"]["balance_error"]), max(slips["energy"]["balance_error"])), 0.01)
 t, px = slips["momentum"]["time"], slips["momentum"]["block_px"]

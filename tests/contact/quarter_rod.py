@@ -1,7 +1,8 @@
 """A quarter model and the full model of the same impact give the same
 contact: the penalty of each slave node follows its tributary area.
 
-The scene is prm/elastic_rod_impact (two elastic rods, 1 m x 1 m, 10 m long,
+The scenes are tests/contact/rod_pair.prm and quarter_rod.prm, after
+prm/elastic_rod_impact (two elastic rods, 1 m x 1 m, 10 m long,
 rod A at 1 m/s into rod B at rest; bar theory: 0.5 N for 0.2 s). The quarter
 model keeps y, z in [0, 0.5] with 2 x 2 elements across (the full model has
 4 x 4 over [-0.5, 0.5]) and symmetry conditions u_y = 0 on y = 0 and u_z = 0
@@ -21,47 +22,14 @@ Checks (both models with the scene's penalty factor 0.1, and at 1.0):
   difference below 1e-8).
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, plane_condition, read_csv,
-                        run_anvil, write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("quarter and full rod models: equal contact force and duration")
-scene = os.path.join(args.source_dir, "prm/elastic_rod_impact/elastic_rod_impact.prm")
-
-quarter_geometry = """
-set Boundary conditions = sym_y_a, sym_z_a, sym_y_b, sym_z_b
-subsection Body rod_a
-  subsection Mesh
-    set Lower corner = -10, 0, 0
-    set Upper corner = 0, 0.5, 0.5
-    set Subdivisions = 80, 2, 2
-  end
-end
-subsection Body rod_b
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 10, 0.5, 0.5
-    set Subdivisions = 80, 2, 2
-  end
-end
-"""
-for body in ("a", "b"):
-    for axis in ("y", "z"):
-        quarter_geometry += plane_condition(f"sym_{axis}_{body}", f"rod_{body}", axis)
 
 
-def run(name, geometry, factor, np=1):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), include=scene, text=f"""
-subsection Simulation
-  set End time = 0.24
-  set Output interval = 0
-  set Print wall times = false
-end
-subsection Contact pair impact
-  set Penalty scale factor = {factor}
-end
-{geometry}
-""")
+def run(name, scene, factor, np=1):
+    prm = test_scene(args, "tests/contact/" + scene, name, {"Contact pair impact/Penalty scale factor": factor})
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"{name}: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()
@@ -79,8 +47,8 @@ def figures(contact, scale):
 
 
 for factor in (0.1, 1.0):
-    full = figures(run(f"full_{factor}", "", factor), 1.0)
-    quarter_contact = run(f"quarter_{factor}", quarter_geometry, factor)
+    full = figures(run(f"full_{factor}", "rod_pair.prm", factor), 1.0)
+    quarter_contact = run(f"quarter_{factor}", "quarter_rod.prm", factor)
     quarter = figures(quarter_contact, 4.0)
     print(f"  f = {factor}: full model plateau {full[0]:.5f} N, duration {full[1]:.5f} s, "
           f"peak {full[2]:.5f} N; quarter x 4: {quarter[0]:.5f} N, {quarter[1]:.5f} s, "
@@ -92,7 +60,7 @@ for factor in (0.1, 1.0):
     c.check(f"f = {factor}: 4 x quarter peak force / full [N]", quarter[2], full[2], 0.005,
             relative=True)
     if factor == 0.1:
-        parallel = run("quarter_np2", quarter_geometry, factor, np=2)
+        parallel = run("quarter_np2", "quarter_rod.prm", factor, np=2)
         c.check_below("quarter model, np = 2 against np = 1: largest relative difference",
                       max_relative_difference(quarter_contact, parallel), 1e-8)
 c.finish()

@@ -1,5 +1,6 @@
 """A free rigid mass striking the free end of an elastic bar (Saint-Venant's
-problem), against the closed form and conservation of momentum.
+problem), against the closed form and conservation of momentum; the scene
+is tests/contact/rigid_mass_on_bar.prm.
 
 Bar: 1 m long, 20 x 20 mm, E = 1e7 Pa, nu = 0 (so that the 3D bar is
 uniaxial), rho = 1000 kg/m^3: c = 100 m/s, impedance Z = rho c A = 40 kg/s.
@@ -29,61 +30,12 @@ balance below 1 %.
 """
 import math
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("rigid mass on an elastic bar")
-prm = write_scene(os.path.join(args.work_dir, "rigid_mass.prm"), text="""
-# Free rigid mass striking an elastic bar (Saint-Venant).
-set Bodies = mass, bar
-set Contact pairs = impact
-subsection Simulation
-  set End time = 0.019
-  set History interval = 1e-4
-  set Print wall times = false
-end
-subsection Body mass
-  subsection Mesh
-    set Lower corner = -0.02, 0, 0
-    set Upper corner = 0, 0.02, 0.02
-    set Subdivisions = 2, 2, 2
-  end
-  subsection Material
-    set Model = rigid
-    subsection rigid
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0
-    end
-  end
-  set Initial velocity = 1, 0, 0
-  subsection Rigid body
-    set Motion = free
-    set Constraints = y, z, rx, ry, rz
-    set Mass = 0.4
-  end
-end
-subsection Body bar
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 1, 0.02, 0.02
-    set Subdivisions = 100, 2, 2
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 1000
-      set Young's modulus = 1e7
-      set Poisson's ratio = 0
-    end
-  end
-end
-subsection Contact pair impact
-  set First body = mass
-  set Second body = bar
-  set Symmetric = false
-end
-""")
+prm = test_scene(args, "tests/contact/rigid_mass_on_bar.prm", "rigid_mass")
+
 M, V0, Z = 0.4, 1.0, 1000 * 100 * 0.02 * 0.02
 k = 0.1 * (1e7 / 3) * (0.02 * 0.02) / 0.01
 

@@ -1,8 +1,8 @@
 """A wall one element thick, struck hard: the contact search keeps the face
 a node has penetrated.
 
-An elastic steel block (20 x 10 x 10 mm, 2 mm elements) strikes at 500 m/s
-a steel layer 2 mm thick, meshed with one element through its thickness
+The scene is tests/contact/thin_wall.prm: an elastic steel block (20 x 10 x
+10 mm, 2 mm elements) strikes at 500 m/s a steel layer 2 mm thick, meshed with one element through its thickness
 (2 mm elements across, nodes in line with the block's), whose back face is
 fixed. At the default penalty factor 0.1 the contact pressure of such a
 strike (about rho c v / 2 = 12 GPa) presses the block's nodes more than half
@@ -26,74 +26,15 @@ Checks:
 - np = 2 equals np = 1 (energy.csv, relative difference below 1e-8).
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, plane_condition, read_csv,
-                        run_anvil, write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("thin meshed wall struck at 500 m/s: no node passes through")
 v0, length = 500.0, 0.02
 back = 0.002  # the layer spans x in [0, 2 mm]; the block's front face is at x = 0
-steel = """
-    subsection elastic
-      set Density         = 7850
-      set Young's modulus = 2.06e11
-      set Poisson's ratio = 0.3
-    end"""
-scene = f"""
-# An elastic steel block at 500 m/s against a steel layer one element thick.
-set Bodies              = block, wall
-set Contact pairs       = strike
-set Boundary conditions = fixed_back
-set Probes              = front_centre, front_corner
-
-subsection Simulation
-  set End time         = 2e-5
-  set Output interval  = 0
-  set History interval = 1e-7
-  set Print wall times = false
-end
-subsection Body block
-  subsection Mesh
-    set Source       = box
-    set Lower corner = -{length}, -0.005, -0.005
-    set Upper corner = 0, 0.005, 0.005
-    set Subdivisions = 10, 5, 5
-  end
-  subsection Material
-    set Model = elastic{steel}
-  end
-  set Formulation      = updated Lagrangian
-  set Initial velocity = {v0}, 0, 0
-end
-subsection Body wall
-  subsection Mesh
-    set Source       = box
-    set Lower corner = 0, -0.01, -0.01
-    set Upper corner = {back}, 0.01, 0.01
-    set Subdivisions = 1, 10, 10
-  end
-  subsection Material
-    set Model = elastic{steel}
-  end
-  set Formulation = updated Lagrangian
-end
-{plane_condition("fixed_back", "wall", "x", at=back, components="x, y, z")}subsection Contact pair strike
-  set Algorithm   = penalty
-  set First body  = wall
-  set Second body = block
-end
-subsection Probe front_centre
-  set Body  = block
-  set Point = 0, 0, 0
-end
-subsection Probe front_corner
-  set Body  = block
-  set Point = 0, 0.005, 0.005
-end
-"""
 energies = {}
 for np in (1, 2):
-    prm = write_scene(os.path.join(args.work_dir, f"wall_np{np}.prm"), text=scene)
+    prm = test_scene(args, "tests/contact/thin_wall.prm", f"wall_np{np}")
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"np = {np}: anvil exits 0", code == 0, err.strip()[-400:]):
         c.finish()

@@ -1,4 +1,5 @@
-"""Bulk viscosity against the jump conditions of a plane wave.
+"""Bulk viscosity against the jump conditions of a plane wave, on
+tests/verification/bulk_viscosity.prm.
 
 A steel plate 1 m thick (100 elements through it, lateral faces held: uniaxial
 strain) moving at 10 m/s strikes a fixed wall at x = 0. A compression front
@@ -18,7 +19,7 @@ viscosity, the ringing front); np = 2 equals np = 1.
 """
 import math
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("bulk viscosity: plane wave against the jump conditions")
@@ -26,60 +27,14 @@ rho, E, nu, v = 7850.0, 2e11, 0.3, 10.0
 M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
 cw = math.sqrt(M / rho)
 arrival = 0.5 / cw
-end = 2.4 * arrival
-scene = f"""
-set Bodies = plate
-set Boundary conditions = wall, side_y, side_z
-set Probes = middle
-subsection Simulation
-  set End time = {end!r}
-  set History interval = 0
-  set Print wall times = false
-end
-subsection Body plate
-  subsection Mesh
-    set Upper corner = 1, 0.01, 0.01
-    set Subdivisions = 100, 1, 1
-  end
-  subsection Material
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = {E}
-      set Poisson's ratio = {nu}
-    end
-  end
-  set Initial velocity = -{v}, 0, 0
-  subsection Bulk viscosity
-    set Linear coefficient = {{b1}}
-    set Quadratic coefficient = {{b2}}
-  end
-end
-subsection Boundary condition wall
-  set Body = plate
-  set Boundary ids = 0
-end
-subsection Boundary condition side_y
-  set Body = plate
-  set Boundary ids = 2, 3
-  set Components = y
-end
-subsection Boundary condition side_z
-  set Body = plate
-  set Boundary ids = 4, 5
-  set Components = z
-end
-subsection Probe middle
-  set Body = plate
-  set Point = 0.5, 0, 0
-end
-"""
 jump_stress = -rho * cw * v
 print(f"  c = {cw:.1f} m/s, front at the probe at {1e6 * arrival:.2f} us, jump: velocity 0, "
       f"stress {1e-6 * jump_stress:.2f} MPa")
 
 results = {}
-for name, b1, b2, np in (("viscous", 0.06, 1.2, 1), ("viscous_np2", 0.06, 1.2, 2), ("inviscid", 0, 0, 1)):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=scene.format(b1=b1, b2=b2))
+inviscid = {"Body plate/Bulk viscosity/Linear coefficient": 0, "Body plate/Bulk viscosity/Quadratic coefficient": 0}
+for name, overrides, np in (("viscous", {}, 1), ("viscous_np2", {}, 2), ("inviscid", inviscid, 1)):
+    prm = test_scene(args, "tests/verification/bulk_viscosity.prm", name, overrides)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"{name} runs to its end", code == 0, err.strip()[-300:]):
         c.finish()

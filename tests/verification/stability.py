@@ -1,6 +1,7 @@
 """Stability of the explicit step.
 
-A block fixed on one face and thrown at (1, 0.5, 0) m/s rings for 10^4 steps.
+A block fixed on one face and thrown at (1, 0.5, 0) m/s rings for 10^4 steps
+(tests/verification/stability.prm).
 With the time step safety factor 0.9 the run must stay stable: it completes,
 and the energy balance stays bounded (limit 5 % one-point, 10 % full
 integration: the block is updated Lagrangian, whose Jaumann-rate
@@ -20,42 +21,14 @@ first elements flatten, the stable step falls below 0.8 of the first one,
 and the run stops with the same kind of line, naming the ratio.
 """
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("stability of the central difference step")
-scene = """
-set Bodies = block
-set Boundary conditions = wall
-subsection Simulation
-  set End time = 13
-  set Print wall times = false
-  set Time step safety factor = {factor}
-{extra}end
-subsection Body block
-  subsection Mesh
-    set Upper corner = 1, 1, 1
-    set Subdivisions = 6, 6, 6
-  end
-  subsection Material
-    subsection elastic
-      set Density = 0.01
-      set Young's modulus = 100
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = {velocity}
-  set Integration = {integration}
-end
-subsection Boundary condition wall
-  set Body = block
-  set Boundary ids = 0
-end
-"""
+scene = "tests/verification/stability.prm"
 for integration in ("one point", "full"):
     tag = integration.replace(" ", "_")
-    prm = write_scene(os.path.join(args.work_dir, f"stable_{tag}.prm"),
-                      text=scene.format(factor=0.9, integration=integration, velocity="1, 0.5, 0", extra=""))
+    prm = test_scene(args, scene, f"stable_{tag}", {"Body block/Integration": integration})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     c.check_true(f"{integration}: factor 0.9 runs to the end", code == 0, err.strip())
     if code == 0:
@@ -64,8 +37,8 @@ for integration in ("one point", "full"):
         c.check_below(f"{integration}: largest energy balance error over the run", max(energy["balance_error"]),
                       0.05 if integration == "one point" else 0.10)
 
-    prm = write_scene(os.path.join(args.work_dir, f"unstable_{tag}.prm"),
-                      text=scene.format(factor=1.2, integration=integration, velocity="1, 0.5, 0", extra=""))
+    prm = test_scene(args, scene, f"unstable_{tag}",
+                     {"Body block/Integration": integration, "Simulation/Time step safety factor": 1.2})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     lines = [l for l in err.splitlines() if l.strip()]
     c.check_true(f"{integration}: factor 1.2 stops with exit status 3", code == 3, f"exit {code}")
@@ -77,9 +50,8 @@ for integration in ("one point", "full"):
     c.check_true(f"{integration}: last good state written",
                  os.path.exists(os.path.join(args.work_dir, f"output/unstable_{tag}/last_good.pvtu")))
 
-prm = write_scene(os.path.join(args.work_dir, "collapse.prm"),
-                  text=scene.format(factor=0.9, integration="one point", velocity="-30, 0, 0",
-                                    extra="  set Minimum time step ratio = 0.8\n"))
+prm = test_scene(args, scene, "collapse",
+                 {"Body block/Initial velocity": "-30, 0, 0", "Simulation/Minimum time step ratio": 0.8})
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 lines = [l for l in err.splitlines() if l.strip()]
 message = lines[-1] if lines else ""

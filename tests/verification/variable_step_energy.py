@@ -1,7 +1,8 @@
 """The energy balance with variable time steps (doc/theory.md, "Energy
 balance with variable steps").
 
-An elastic bar clamped at one end and thrown sideways rings for about 2,000
+An elastic bar clamped at one end and thrown sideways
+(tests/verification/variable_step_energy.prm) rings for about 2,000
 steps. The central difference scheme's discrete energy identity holds for
 any sequence of steps once the kinetic energy at time n is booked as
 1/2 v^{n-1/2} . (M v^{n-1/2} + dt^{n-1/2} F^n) and every work term by the
@@ -22,48 +23,15 @@ trapezoidal rule; so:
 """
 import math
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("energy balance with variable time steps")
-scene = """
-set Bodies = bar
-set Boundary conditions = clamp
-set Probes = tip
-subsection Simulation
-  set End time = {end}
-  set Print wall times = false
-  set History interval = 0
-  set Maximum time step = {max_dt}
-end
-subsection Body bar
-  subsection Mesh
-    set Upper corner = 4, 1, 1
-    set Subdivisions = 20, 5, 5
-  end
-  subsection Material
-    subsection elastic
-      set Density = 0.01
-      set Young's modulus = 100
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = 0, 1, 0.5
-end
-subsection Boundary condition clamp
-  set Body = bar
-  set Boundary ids = 0
-end
-subsection Probe tip
-  set Body = bar
-  set Point = 4, 0.4, 0.4
-end
-"""
+scene = "tests/verification/variable_step_energy.prm"
 
 
 def run(name, end, max_dt="0"):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                      text=scene.format(end=repr(end), max_dt=max_dt))
+    prm = test_scene(args, scene, name, {"Simulation/End time": repr(end), "Simulation/Maximum time step": max_dt})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if not c.check_true(f"{name} runs to its end", code == 0, err.strip()[-300:]):
         c.finish()
@@ -122,11 +90,10 @@ c.check_below("(b) step-change energy of the reference run, whose step follows t
 # Without bulk viscosity: its linear term (1 - 2 % of critical damping in
 # the highest modes) keeps this resonance down; with the defaults the same
 # run goes through.
-prm = write_scene(os.path.join(args.work_dir, "switching_step.prm"),
-                  text=scene.format(end="3.0", max_dt=f"if(sin(t * {math.pi / (5 * 0.75 * dt_big)!r}) > 0, "
-                                    f"{dt_big!r}, {dt_big / 2!r})") +
-                  "subsection Body bar\n  subsection Bulk viscosity\n    set Linear coefficient = 0\n"
-                  "    set Quadratic coefficient = 0\n  end\nend\n")
+prm = test_scene(args, scene, "switching_step",
+                 {"Simulation/Maximum time step": f"if(sin(t * {math.pi / (5 * 0.75 * dt_big)!r}) > 0, "
+                                                  f"{dt_big!r}, {dt_big / 2!r})",
+                  "Body bar/Bulk viscosity/Linear coefficient": 0, "Body bar/Bulk viscosity/Quadratic coefficient": 0})
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 lines = [line for line in err.strip().splitlines() if line.strip()]
 print(f"  switching every five steps: exit {code}: {err.strip()[:400]}")

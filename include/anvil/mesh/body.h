@@ -7,6 +7,7 @@
 
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/interface.h>
+#include <anvil/mesh/source.h>
 #include <anvil/rigid_body/rigid_body.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -20,23 +21,6 @@
 
 namespace anvil
 {
-  /**
-   * What a body's mesh file names (upper-case keys): the boundary id of
-   * each surface, and the reference positions of each node set, so that
-   * boundary conditions can select them.
-   */
-  struct MeshNames
-  {
-    std::map<std::string, unsigned int>                  surfaces;
-    std::map<std::string, std::vector<dealii::Point<3>>> node_sets;
-    /** A warning for the log (what the file held that the body ignores),
-        or empty. */
-    std::string note;
-    /** A line for the log about the mesh (a cylinder's section), or
-        empty. */
-    std::string info;
-  };
-
   /**
    * One deformable body. Its mesh is built serially (generators may refine
    * with their curved manifolds), then flattened into the scene's single
@@ -112,21 +96,12 @@ namespace anvil
     }
 
   private:
-    void create_mesh_from_file(dealii::Triangulation<3> &tria, MeshNames *names) const;
-
-    std::string          mesh_source;
-    dealii::Point<3>     lower, upper;
-    std::vector<unsigned int> subdivisions;
-    dealii::Tensor<1, 3>      grading;
-    double               radius = 0, length = 0;
-    unsigned int         axial_subdivisions = 1;
-    unsigned int         section_refinements = 0;
-    std::string          file_name;
-    /** Names of the file's cell groups this body takes (all if empty). */
-    std::vector<std::string> region;
-    dealii::Tensor<1, 3> offset;
-    double               scale = 1;
-    unsigned int         refinements = 0;
+    /** Where the mesh comes from (the plugin 'Source' names). */
+    std::unique_ptr<MeshSources::Interface> mesh_source;
+    dealii::Tensor<1, 3>                    offset;
+    unsigned int                            refinements = 0;
+    /** The entries of other sources the scene sets, for the log. */
+    std::vector<std::string> ignored_entries;
     bool                 has_imperfection    = false;
     dealii::Point<3>     imperfection_lower, imperfection_upper;
     double               imperfection_factor = 1.;

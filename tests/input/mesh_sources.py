@@ -1,0 +1,65 @@
+"""Mesh sources as plugins (tests/input/mesh_sources.prm): the elements each
+source makes, the entries of a source a body did not choose, bad input.
+
+The scene holds one body of each generated source; `anvil --check` builds
+the meshes and reports the elements, against the count by hand:
+- the ball ('sphere'): deal.II's balanced ball of 32 cells, refined once:
+  256; the roller ('cylinder'): a disk of 5 cells refined once in its
+  section (20) times 4 along the axis: 80; the slab ('box'): 16; in all 352;
+- 'Global refinements = 1' on the roller: its section refined twice (80)
+  and its axis halved (8): 640, in all 912.
+An entry that belongs to another source ('Region' on the box, 'Section
+refinements' on the sphere, 'Subdivisions' on the cylinder, 'Length' on the
+box) is ignored, and a warning names it and the source it belongs to (a
+scene that includes another and switches the source inherits such entries,
+so they are no error). Errors, one line each and exit 2:
+- a ball refined 8 times (32 x 8^8 elements) does not fit and says so,
+  naming 'Global refinements';
+- an unknown source lists the ones there are.
+"""
+import os
+from anvil_test import Checker, arguments, run_anvil, test_scene
+
+args = arguments()
+c = Checker("mesh sources: elements made, entries of other sources, bad input")
+scene = "tests/input/mesh_sources.prm"
+
+
+def check(name, overrides=None):
+    prm = test_scene(args, scene, name, overrides)
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+    count = -1
+    for line in out.splitlines():
+        if "elements," in line:
+            count = int(line.split(" elements,")[0].split()[-1])
+    return code, count, err.strip()
+
+
+code, n, err = check("as_shipped")
+c.check_true("the scene is valid", code == 0, err[-300:])
+c.check("elements: 32 x 8 (ball) + 5 x 4 x 4 (roller) + 16 (slab)", n, 32 * 8 + 5 * 4 * 4 + 16, 0)
+code, n, err = check("roller_refined", {"Body roller/Mesh/Global refinements": 1})
+c.check("roller refined once more: 32 x 8 + 5 x 16 x 8 + 16", n, 32 * 8 + 5 * 16 * 8 + 16, 0)
+
+for name, overrides, words in (
+        ("region_on_box", {"Body slab/Mesh/Region": "PART-1"},
+         ("body 'slab'", "'Region'", "'Source = file'", "'Source = box'")),
+        ("section_on_sphere", {"Body ball/Mesh/Section refinements": 1},
+         ("body 'ball'", "'Section refinements'", "'Source = cylinder'", "'Source = sphere'")),
+        ("subdivisions_on_cylinder", {"Body roller/Mesh/Subdivisions": "2, 2, 2"},
+         ("body 'roller'", "'Subdivisions'", "'Source = box'", "'Source = cylinder'")),
+        ("length_on_box", {"Body slab/Mesh/Length": 2}, ("body 'slab'", "'Length'", "'Source = cylinder'"))):
+    prm = test_scene(args, scene, name, overrides)
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+    warnings = [line for line in out.splitlines() if line.startswith("Warning:")]
+    c.check_true(f"{name}: valid (exit 0), one warning naming {', '.join(words)}",
+                 code == 0 and len(warnings) == 1 and all(w in warnings[0] for w in words),
+                 (warnings[0] if warnings else err)[:400])
+
+for name, overrides, words in (
+        ("ball_too_fine", {"Body ball/Mesh/Global refinements": 8}, ("'Global refinements'", "Body ball/Mesh")),
+        ("unknown_source", {"Body ball/Mesh/Source": "tube"}, ("Source", "box", "cylinder", "file", "sphere"))):
+    code, n, err = check(name, overrides)
+    c.check_true(f"{name}: exit 2 with one line naming {', '.join(words)}",
+                 code == 2 and len(err.splitlines()) == 1 and all(w in err for w in words), err[:400])
+c.finish()
