@@ -149,14 +149,15 @@ def overrides_text(overrides):
     return text
 
 
-def test_scene(args, path, name, overrides=None):
+def test_scene(args, path, name, overrides=None, text=""):
     """Write NAME.prm into the work directory: the scene PATH (relative to
     the source tree, e.g. tests/contact/friction_block.prm) as a user would
-    run it, with OVERRIDES (see overrides_text). Its results go to
+    run it, with OVERRIDES (see overrides_text), then TEXT (scene-file
+    text, e.g. a whole material subsection). Its results go to
     output/NAME."""
     return write_scene(os.path.join(args.work_dir, name + ".prm"),
                        include=os.path.join(os.path.abspath(args.source_dir), path),
-                       text=overrides_text(overrides or {}))
+                       text=overrides_text(overrides or {}) + text)
 
 
 def read_csv(path):
@@ -207,36 +208,6 @@ def uniaxial_boundary_conditions(body, velocity):
                  f"  set Boundary ids = {bid}\n  set Components = {comp}\nend\n")
     return text + (f"subsection Boundary condition pull\n  set Body = {body}\n  set Boundary ids = 1\n"
                    f"  set Type = velocity\n  set Velocity = {velocity}, 0, 0\n  set Components = x\nend\n")
-
-
-def uniaxial_cube_scene(L, end_time, history_interval, material, body_entries="", top=""):
-    """Scene text of one hexahedron (edge L, body 'cube') in uniaxial stress
-    at the rate its x+ face is pulled: symmetry planes on the x-, y- and z-
-    faces, the x+ face moving at 'velocity' (give it through
-    uniaxial_boundary_conditions in 'top' or after), a probe 'corner' at
-    (L, L, L). 'material' is the body's 'subsection Material' text,
-    'body_entries' more entries of the body, 'top' text before the rest."""
-    return f"""{top}set Bodies = cube
-set Boundary conditions = sym_x, sym_y, sym_z, pull
-set Probes = corner
-subsection Simulation
-  set End time = {end_time}
-  set History interval = {history_interval}
-  set Print wall times = false
-end
-subsection Body cube
-  subsection Mesh
-    set Source = box
-    set Lower corner = 0, 0, 0
-    set Upper corner = {L}, {L}, {L}
-    set Subdivisions = 1, 1, 1
-  end
-{material}
-{body_entries}end
-subsection Probe corner
-  set Point = {L}, {L}, {L}
-end
-"""
 
 
 def deviation_from_driver(driver, probe, L):
@@ -363,49 +334,6 @@ def elastic_material(density, E, nu):
     end
   end
 """
-
-
-def box_body(name, lower, upper, subdivisions, material):
-    """Scene text of a body 'name': a box from 'lower' to 'upper' (3
-    numbers each) with 'subdivisions' (3 integers), of the body's
-    'subsection Material' text 'material'."""
-    join = lambda v: ", ".join(f"{x:g}" for x in v)
-    return f"""subsection Body {name}
-  subsection Mesh
-    set Source = box
-    set Lower corner = {join(lower)}
-    set Upper corner = {join(upper)}
-    set Subdivisions = {join(subdivisions)}
-  end
-{material}end
-"""
-
-
-def elastic_box_body(name, lower, upper, subdivisions, density, E, nu):
-    """An elastic box body (box_body with elastic_material)."""
-    return box_body(name, lower, upper, subdivisions, elastic_material(density, E, nu))
-
-
-def steel_box_body(name, lower, upper, subdivisions, erosion=False):
-    """A box body of the seed's Table 1 steel (plastic kinematic, rate-free),
-    with failure and erosion if asked."""
-    return box_body(name, lower, upper, subdivisions, f"""  subsection Material
-    set Model = plastic kinematic
-    subsection plastic kinematic
-      set Preset = Table 1 steel
-      set Strain rate effects = none
-      set Erosion = {'true' if erosion else 'false'}
-    end
-  end
-""")
-
-
-def dormant_rod_scene():
-    """Lines added to prm/elastic_rod_impact: a third rod 100 m away (as
-    fine as the two), in a contact pair with rod B that never closes."""
-    return ("set Bodies = rod_a, rod_b, far\nset Contact pairs = impact, far_pair\n"
-            + elastic_box_body("far", (100, -0.5, -0.5), (110, 0.5, 0.5), (80, 4, 4), 0.01, 100, 0.3)
-            + "subsection Contact pair far_pair\n  set First body  = rod_b\n  set Second body = far\nend\n")
 
 
 def check_hertz_speeds(c, speeds, hertz, run, tolerance):

@@ -48,46 +48,6 @@ def mc2010_elastic_limit(fcm):
     return lo, 0.4 * fcm / lo
 
 
-def pulled_bar(n, end_time, history_interval, velocity, extra="", length=0.1, width=0.01,
-               lateral=None):
-    """Scene text of a concrete bar (length x width x width, n elements along
-    and lateral = n // 10 across) pulled at its x+ end at 'velocity' with
-    symmetry planes on x-, y-, z-, a probe 'end' in the first element and
-    one element row just beyond mid-length weakened to strength 0.95.
-    'extra' goes into the material subsection."""
-    from anvil_test import uniaxial_boundary_conditions
-    dx = length / n
-    m = lateral if lateral else max(n // 10, 1)
-    return f"""
-# Concrete bar pulled at one end, {n} elements along.
-set Bodies = bar
-set Boundary conditions = sym_x, sym_y, sym_z, pull
-set Probes = end
-subsection Simulation
-  set End time = {end_time}
-  set History interval = {history_interval}
-  set Print wall times = false
-end
-subsection Body bar
-  subsection Mesh
-    set Source = box
-    set Lower corner = 0, 0, 0
-    set Upper corner = {length}, {width}, {width}
-    set Subdivisions = {n}, {m}, {m}
-  end
-{material_block(extra=extra, indent="  ")}
-  subsection Imperfection
-    set Lower corner = {0.5 * length + 0.1 * dx}, -1, -1
-    set Upper corner = {0.5 * length + 0.9 * dx}, 1, 1
-    set Strength factor = 0.95
-  end
-end
-{uniaxial_boundary_conditions("bar", velocity)}subsection Probe end
-  set Point = {dx / 2}, {width / 2}, {width / 2}
-end
-"""
-
-
 def mc2010_tensile_strength(fcm):
     fck = fcm / 1e6 - 8
     return 1e6 * (0.3 * fck ** (2 / 3) if fck <= 50 else 2.12 * math.log(1 + fcm / 10e6))
@@ -126,3 +86,17 @@ def material_block(fc=45.4e6, extra="", indent=""):
 end
 """
     return "".join(indent + line + "\n" for line in text.splitlines())
+
+
+def pulled_bar_overrides(n, end_time, history_interval, lateral=None, length=0.1, width=0.01):
+    """Overrides of tests/concrete/pulled_bar.prm (test_scene) for n
+    elements along and lateral = n // 10 across: the subdivisions, the
+    weakened row just beyond mid-length, the probe in the first element,
+    the end time and the history interval."""
+    dx = length / n
+    m = lateral if lateral else max(n // 10, 1)
+    return {"Simulation/End time": end_time, "Simulation/History interval": history_interval,
+            "Body bar/Mesh/Subdivisions": f"{n}, {m}, {m}",
+            "Body bar/Imperfection/Lower corner": f"{0.5 * length + 0.1 * dx}, -1, -1",
+            "Body bar/Imperfection/Upper corner": f"{0.5 * length + 0.9 * dx}, 1, 1",
+            "Probe end/Point": f"{dx / 2}, {width / 2}, {width / 2}"}

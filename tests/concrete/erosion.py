@@ -1,4 +1,4 @@
-"""Erosion of cracked concrete: the bar of concrete/mesh_objectivity (100 x
+"""Erosion of cracked concrete: the bar of tests/concrete/pulled_bar.prm (100 x
 10 x 10 mm, 20 x 2 x 2 elements, weakened row just beyond mid-length) pulled
 at 5 mm/s with 'Erosion principal strain' = 0.02.
 
@@ -26,7 +26,7 @@ Checks:
 import math
 import os
 from anvil_test import (Checker, arguments, max_relative_difference, read_csv, read_vtu_cells, run_anvil,
-                        write_scene)
+                        test_scene)
 import concrete_reference as ref
 
 args = arguments()
@@ -37,12 +37,13 @@ dx = L / n
 eps_f = 0.02
 v = 0.005
 end_time = 1.5 * dx * (math.exp(eps_f) - 1) / v
-extra = f"    set Erosion = true\n    set Erosion principal strain = {eps_f}\n"
-text = ref.pulled_bar(n, end_time, end_time / 300, v, extra=extra, lateral=2)
+cdp = "Body bar/Material/concrete damaged plasticity/"
+overrides = {**ref.pulled_bar_overrides(n, end_time, end_time / 300, lateral=2), cdp + "Erosion": "true",
+             cdp + "Erosion principal strain": eps_f}
 results = {}
 for np in (1, 2):
     name = f"concrete_erosion_np{np}"
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=text)
+    prm = test_scene(args, "tests/concrete/pulled_bar.prm", name, overrides)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"np = {np}: anvil exits 0", code == 0, err.strip()):
         c.finish()
@@ -93,9 +94,8 @@ c.check_below("VTU: 0.95 - smallest tensile_damage of the eroded cells (cracks p
 
 # The other criterion: 'Erosion damage' = 0.99 instead of the strain.
 name = "concrete_erosion_damage"
-prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                  text=text.replace(f"    set Erosion principal strain = {eps_f}\n",
-                                    "    set Erosion damage = 0.99\n"))
+prm = test_scene(args, "tests/concrete/pulled_bar.prm", name,
+                 {**overrides, cdp + "Erosion principal strain": 0, cdp + "Erosion damage": 0.99})
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if c.check_true("damage criterion: anvil exits 0", code == 0, err.strip()):
     d = os.path.join(args.work_dir, "output", name)

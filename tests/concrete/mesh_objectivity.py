@@ -1,5 +1,5 @@
-"""Crack-band regularisation: a concrete bar (100 x 10 x 10 mm, f'c = 45.4
-MPa, MC2010 curves, the default nu = 0.2 and psi = 36 degrees) pulled to
+"""Crack-band regularisation: a concrete bar (tests/concrete/pulled_bar.prm;
+100 x 10 x 10 mm, f'c = 45.4 MPa, MC2010 curves, the default nu = 0.2 and psi = 36 degrees) pulled to
 complete separation dissipates the same energy on three meshes (10 x 1 x 1,
 20 x 2 x 2, 40 x 4 x 4 cubic elements).
 
@@ -25,7 +25,7 @@ with nu = 0 against 0.95 G_F A, and np = 2 against np = 1 on the middle mesh
 (same dissipated energy to 1e-9).
 """
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene
 import concrete_reference as ref
 
 args = arguments()
@@ -40,10 +40,10 @@ k = b_t + (1 - b_t) * (1 + nu) * (1 - 2 * nu) / (1 - nu)
 expected = 0.95 * k * G_F * B * B
 
 
-def run(n, np=1, extra="", tag=""):
+def run(n, np=1, extra={}, tag=""):
     name = f"bar_{n}_np{np}{tag}"
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                      text=ref.pulled_bar(n, end_time, end_time / 200, v, extra=extra))
+    prm = test_scene(args, "tests/concrete/pulled_bar.prm", name,
+                     {**ref.pulled_bar_overrides(n, end_time, end_time / 200), **extra})
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"{n} elements along, np = {np}: anvil exits 0", code == 0, err.strip()):
         c.finish()
@@ -67,7 +67,7 @@ for n in (10, 20, 40):
                   abs(sum(tail) / len(tail)) / peak, 0.05)
 spread = (max(energies.values()) - min(energies.values())) / min(energies.values())
 c.check_below("spread of the dissipated energy across the three meshes", spread, 0.10)
-W0, _ = run(10, extra="    set Poisson's ratio = 0\n", tag="_nu0")
+W0, _ = run(10, extra={"Body bar/Material/concrete damaged plasticity/Poisson's ratio": 0}, tag="_nu0")
 c.check("10 x 1 x 1 mesh, nu = 0: dissipated energy (J) against 0.95 G_F A", W0, 0.95 * G_F * B * B,
         0.05, relative=True)
 W2, _ = run(20, np=2)

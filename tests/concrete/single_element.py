@@ -2,7 +2,8 @@
 curves) through the whole explicit solver reproduces the material-point
 driver's uniaxial curve, one-point and full integration.
 
-The 10 mm cube has symmetry planes on its x-, y- and z- faces; its x+ face
+The 10 mm cube (tests/material/uniaxial_cube.prm with this material) has
+symmetry planes on its x-, y- and z- faces; its x+ face
 moves at 1 mm/s (0.1/s) in compression and 0.2 mm/s in tension: in compression past the peak into softening
 (strain -0.005), in tension through cracking to full separation (crack
 band: the characteristic length is the cube's edge, which the driver is
@@ -16,7 +17,7 @@ driver's density times the volume (1 %).
 import math
 import os
 from anvil_test import (Checker, arguments, deviation_from_driver, read_csv, run_anvil, run_material_point,
-                        uniaxial_boundary_conditions, uniaxial_cube_scene, write_scene)
+                        test_scene)
 import concrete_reference as ref
 
 args = arguments()
@@ -35,9 +36,10 @@ for load, target in paths.items():
     v = math.copysign(rate * L, target)
     for integration in ("one point", "full"):
         name = f"{load}_{integration.replace(' ', '_')}"
-        prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=uniaxial_cube_scene(
-            L, end_time, end_time / 400, ref.material_block(indent="  "), f"  set Integration = {integration}\n")
-            + uniaxial_boundary_conditions("cube", v))
+        prm = test_scene(args, "tests/material/uniaxial_cube.prm", name,
+                         {"Simulation/End time": end_time, "Simulation/History interval": end_time / 400,
+                          "Body cube/Integration": integration, "Boundary condition pull/Velocity": f"{v}, 0, 0"},
+                         text=f"subsection Body cube\n{ref.material_block(indent='  ')}\nend\n")
         code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
         if not c.check_true(f"{load}, {integration}: anvil exits 0", code == 0, err.strip()):
             continue

@@ -1,5 +1,6 @@
 """Penalty contact under large deformation: the Taylor bar of
-prm/steel_bar_impact (Table 1 steel, 250 m/s, 1 mm elements along the axis)
+prm/steel_bar_impact with penalty contact (tests/contact/taylor_penalty.prm;
+Table 1 steel, 250 m/s, 1 mm elements along the axis)
 at the default penalty factor 0.1 against the same run at 1.0.
 
 The impact face spreads to several times its area. With the penalty
@@ -40,29 +41,18 @@ Checks:
 - energy balance below 1 % in every run.
 """
 import os
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("Taylor bar on a rigid wall: penetration and result at the default penalty factor")
-scene = os.path.join(args.source_dir, "prm/steel_bar_impact/steel_bar_impact.prm")
 element_length = 0.05 / 25 / 2
 
 
 def run(factor, speed=250):
     name = f"taylor_f{factor}_v{speed}"
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), include=scene, text=f"""
-subsection Simulation
-  set Output interval = 0
-  set Print wall times = false
-end
-subsection Body bar
-  set Initial velocity = {speed}, 0, 0
-end
-subsection Contact pair impact
-  set Algorithm = penalty
-  set Penalty scale factor = {factor}
-end
-""")
+    prm = test_scene(args, "tests/contact/taylor_penalty.prm", name,
+                     {"Body bar/Initial velocity": f"{speed}, 0, 0", "Contact pair impact/Penalty scale factor": factor})
+
     code, out, err = run_anvil(args.anvil, prm, np=2, cwd=args.work_dir)
     if not c.check_true(f"f = {factor}, {speed} m/s: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()

@@ -1,4 +1,4 @@
-"""Results that stay consistent on disk.
+"""Results that stay consistent on disk (tests/input/output_consistency.prm).
 
 - A run deletes only files a run wrote: a user's files in the output
   directory survive a rerun with 'Overwrite existing output = true', and
@@ -18,36 +18,18 @@ import re
 import signal
 import subprocess
 import time
-from anvil_test import Checker, arguments, write_scene
+from anvil_test import Checker, arguments, test_scene
 
 args = arguments()
 c = Checker("results consistent on disk")
 work = args.work_dir
 
-block = """
-set Bodies = block
-subsection Simulation
-  set End time = {end}
-  set Output interval = {output}
-  set History interval = 0
-  set Print wall times = false
-  set Overwrite existing output = true
-end
-subsection Body block
-  subsection Mesh
-    set Upper corner = 1, 1, 1
-    set Subdivisions = {n}, {n}, {n}
-  end
-  subsection Material
-    subsection elastic
-      set Density = 0.01
-      set Young's modulus = 100
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = 0.1, 0.05, 0
-end
-"""
+
+
+def scene(name, end, output, n):
+    return test_scene(args, "tests/input/output_consistency.prm", name,
+                      {"Simulation/End time": end, "Simulation/Output interval": output,
+                       "Body block/Mesh/Subdivisions": f"{n}, {n}, {n}"})
 
 
 def run(prm, **kw):
@@ -55,7 +37,7 @@ def run(prm, **kw):
 
 
 # A user's files survive; the run's list names only files that exist.
-prm = write_scene(os.path.join(work, "keep.prm"), text=block.format(end=0.2, output=0.05, n=3))
+prm = scene("keep", 0.2, 0.05, 3)
 r = run(prm)
 c.check_true("first run", r.returncode == 0, r.stderr.strip())
 out = os.path.join(work, "output", "keep")
@@ -79,7 +61,7 @@ temporary = [n for n in os.listdir(out) if n.endswith(".tmp") or ".new" in n]
 c.check_true("a finished run leaves no temporary file", not temporary, ", ".join(temporary))
 
 # Killed mid-way: whole rows, histories cut together, a valid frame index.
-prm = write_scene(os.path.join(work, "killed.prm"), text=block.format(end=1e3, output=0.5, n=8))
+prm = scene("killed", 1e3, 0.5, 8)
 p = subprocess.Popen([args.anvil, prm], cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 time.sleep(4.0)
 p.send_signal(signal.SIGKILL)
@@ -112,7 +94,7 @@ c.check_true(f"solution.pvd is whole and its {len(frames)} frames (and their pie
 # is the one of the last frame written whole, checked above.)
 
 # A file-size limit: one line naming the file and the cause, exit 4.
-prm = write_scene(os.path.join(work, "limited.prm"), text=block.format(end=20, output=0, n=2))
+prm = scene("limited", 20, 0, 2)
 # (The limit applies to anvil alone: MPI's own start-up files must not meet it.)
 r = subprocess.run(["mpirun", "-np", "1", "bash", "-c", f"ulimit -f 200 && exec '{args.anvil}' '{prm}'"],
                    cwd=work, capture_output=True, text=True)
@@ -129,7 +111,7 @@ c.check_true(f"the history stops at a whole row ({len(rows)} rows)",
 os.makedirs(os.path.join(work, "output"), exist_ok=True)
 with open(os.path.join(work, "output", "blocked"), "w") as f:
     f.write("a file\n")
-prm = write_scene(os.path.join(work, "blocked.prm"), text=block.format(end=0.1, output=0, n=2))
+prm = scene("blocked", 0.1, 0, 2)
 r = subprocess.run([args.anvil, "--check", prm], cwd=work, capture_output=True, text=True)
 c.check_true("--check: the output directory is a file: exit 2, one line",
              r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "is a file" in r.stderr,

@@ -1,4 +1,5 @@
-"""'Refinement region' as a user writes it: which elements it refines, and its errors.
+"""'Refinement region' as a user writes it: which elements it refines, and its
+errors (tests/input/refinement_region.prm).
 
 A unit block of 4 x 4 x 4 elements and a rigid plate 0.1 m beyond its face
 x = 1, checked with `anvil --check` (the mesh is built and refined, the
@@ -20,72 +21,40 @@ surface with hanging nodes (the penalty takes it: exit 0).
 """
 import os
 import re
-from anvil_test import Checker, arguments, run_anvil, write_scene
+from anvil_test import Checker, arguments, run_anvil, test_scene
 
 args = arguments()
 c = Checker("refinement region: elements refined and bad input")
-base = """
-set Bodies = block, plate
-subsection Body block
-  subsection Mesh
-    set Subdivisions = 4, 4, 4
-  end
-  subsection Material
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-  subsection Refinement region
-{region}
-  end
-end
-subsection Body plate
-  subsection Mesh
-    set Lower corner = 1.1, 0, 0
-    set Upper corner = 1.2, 1, 1
-    set Subdivisions = 1, 1, 1
-  end
-  subsection Material
-    set Model = rigid
-  end
-{plate}
-end
-{extra}
-"""
+R = "Body block/Refinement region/"
+no_box = {R + "Lower corner": "", R + "Upper corner": ""}
 
 
-def check(name, region, plate="", extra=""):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                      text=base.format(region=region, plate=plate, extra=extra))
+def check(name, overrides=None, text=""):
+    prm = test_scene(args, "tests/input/refinement_region.prm", name, overrides, text)
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
     m = re.search(r"(\d+) elements", out)
     return code, int(m.group(1)) if m else -1, err.strip()
 
 
-code, n, err = check("box", "set Lower corner = -1, -1, -1\nset Upper corner = 0.5, 2, 2")
+touch = "set Contact pairs = touch\nsubsection Contact pair touch\nset First body = block\nset Second body = plate\n"
+code, n, err = check("box")
 c.check("box x < 0.5 m, one level: elements", n, 289, 0)
-code, n, err = check("near_short", "set Near body = plate\nset Distance = 0.2")
+code, n, err = check("near_short", {**no_box, R + "Near body": "plate", R + "Distance": 0.2})
 c.check("near the plate within 0.2 m: elements", n, 65, 0)
-code, n, err = check("near", "set Near body = plate\nset Distance = 0.3")
+code, n, err = check("near", {**no_box, R + "Near body": "plate", R + "Distance": 0.3})
 c.check("near the plate within 0.3 m: elements", n, 177, 0)
-code, n, err = check("two_levels", "set Lower corner = -1, -1, -1\nset Upper corner = 0.25, 2, 2\nset Levels = 2")
+code, n, err = check("two_levels", {R + "Upper corner": "0.25, 2, 2", R + "Levels": 2})
 c.check("two levels in x < 0.25 m, the next layer refined once by the one-level rule: elements", n, 1185, 0)
 
-for name, region, plate, extra, what in (
-        ("unknown_near", "set Near body = wall\nset Distance = 0.1", "", "", "is not in 'Bodies'"),
-        ("no_distance", "set Near body = plate", "", "", "needs a 'Distance'"),
-        ("rigid_refined", "", "subsection Refinement region\nset Lower corner = 0, 0, 0\n"
-                              "set Upper corner = 2, 2, 2\nend", "", "a rigid body"),
-        ("kinematic", "set Lower corner = -1, -1, -1\nset Upper corner = 0.5, 2, 2", "",
-         "set Contact pairs = touch\nsubsection Contact pair touch\nset First body = block\n"
-         "set Second body = plate\nend", "kinematic contact does not take")):
-    code, n, err = check(name, region, plate, extra)
+for name, overrides, text, what in (
+        ("unknown_near", {**no_box, R + "Near body": "wall", R + "Distance": 0.1}, "", "is not in 'Bodies'"),
+        ("no_distance", {**no_box, R + "Near body": "plate"}, "", "needs a 'Distance'"),
+        ("rigid_refined", {**no_box, "Body plate/Refinement region/Lower corner": "0, 0, 0",
+                           "Body plate/Refinement region/Upper corner": "2, 2, 2"}, "", "a rigid body"),
+        ("kinematic", {}, touch + "end\n", "kinematic contact does not take")):
+    code, n, err = check(name, overrides, text)
     c.check_true(f"{name}: exit 2 with one line saying '{what}'",
                  code == 2 and len(err.splitlines()) == 1 and what in err, err[:300])
-code, n, err = check("penalty", "set Lower corner = -1, -1, -1\nset Upper corner = 0.5, 2, 2", "",
-                     "set Contact pairs = touch\nsubsection Contact pair touch\nset First body = block\n"
-                     "set Second body = plate\nset Algorithm = penalty\nend")
+code, n, err = check("penalty", {}, touch + "set Algorithm = penalty\nend\n")
 c.check_true("the same pair with the penalty: valid", code == 0, err[:300])
 c.finish()

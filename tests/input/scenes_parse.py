@@ -13,6 +13,12 @@ tests = sorted(glob.glob(os.path.join(args.source_dir, "tests/*/*.prm")))
 c.check_true("there are test scenes", len(tests) > 0, f"{len(tests)} found")
 scenes += tests
 for prm in scenes:
+    libraries = [l.split("=", 1)[1].strip() for l in open(prm) if l.strip().startswith("set Additional shared libraries")]
+    missing = [lib for lib in libraries if lib and not os.path.exists(os.path.join(os.path.dirname(prm), lib))]
+    if missing:
+        # A plugin example's scene: its test builds the plugin and runs it.
+        print(f"  (not checked: {os.path.relpath(prm, args.source_dir)} loads {', '.join(missing)}, not built here)")
+        continue
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
     c.check_true(os.path.relpath(prm, args.source_dir), code == 0, (out + err).strip().splitlines()[-1] if (out + err).strip() else "")
 studies = sorted(glob.glob(os.path.join(args.source_dir, "prm/*/studies/*.prm")))

@@ -1,6 +1,6 @@
 """The VTU output as ParaView sees it, read with the VTK library (Debian's
 python3-vtk9, the library ParaView uses) from the .pvtu record of each
-frame.
+frame (tests/input/vtu_two_bodies.prm and vtu_block.prm).
 
 - A connected mesh: each frame has one point per mesh node on one process
   (87 for a 4x3x2 and a 2x2x2 block, not 8 per cell), every node_id once,
@@ -20,7 +20,7 @@ frame.
   compressed pieces name the compressor and are smaller (ratio printed)."""
 import os
 import numpy as np
-from anvil_test import Checker, arguments, run_anvil, write_scene
+from anvil_test import Checker, arguments, run_anvil, test_scene
 
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
@@ -30,36 +30,6 @@ c = Checker("VTU output read with VTK: connected mesh, global ids, TIME")
 
 end_time = 1.234567890123e-5
 v0 = np.array([1.5, -0.5, 0.25])
-scene_text = f"""
-set Bodies = held, free
-subsection Simulation
-  set End time = {end_time!r}
-  set Output interval = {end_time!r}
-  set Print wall times = false
-end
-subsection Body held
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.04, 0.03, 0.02
-    set Subdivisions = 4, 3, 2
-  end
-  set Initial velocity = 10, 0, 0
-end
-subsection Body free
-  subsection Mesh
-    set Lower corner = 0.1, 0, 0
-    set Upper corner = 0.12, 0.02, 0.02
-    set Subdivisions = 2, 2, 2
-  end
-  set Initial velocity = {v0[0]}, {v0[1]}, {v0[2]}
-end
-set Boundary conditions = wall
-subsection Boundary condition wall
-  set Body = held
-  set Boundary ids = 0
-end
-"""
-
 
 def read(path):
     reader = vtk.vtkXMLPUnstructuredGridReader()
@@ -75,7 +45,7 @@ def read(path):
 
 frames = {}
 for np_ in (1, 2):
-    prm = write_scene(os.path.join(args.work_dir, f"vtu_np{np_}.prm"), text=scene_text)
+    prm = test_scene(args, "tests/input/vtu_two_bodies.prm", f"vtu_np{np_}")
     code, out, err = run_anvil(args.anvil, prm, np=np_, cwd=args.work_dir)
     if not c.check_true(f"np = {np_}: runs", code == 0, err.strip()):
         continue
@@ -141,35 +111,10 @@ def arrays_of(path):
     return out
 
 
-block = """
-set Bodies = block
-subsection Simulation
-  set End time = 2e-6
-  set Output interval = 2e-6
-  set Print wall times = false
-  set Output compression = {compression}
-end
-subsection Body block
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.032, 0.032, 0.032
-    set Subdivisions = 32, 32, 32
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = 1, 0, 0
-end
-"""
 got, sizes = {}, {}
 for compression in ("zlib", "none"):
-    prm = write_scene(os.path.join(args.work_dir, f"block_{compression}.prm"),
-                      text=block.format(compression=compression))
+    prm = test_scene(args, "tests/input/vtu_block.prm", f"block_{compression}",
+                     {"Simulation/Output compression": compression})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if not c.check_true(f"32^3 block, compression {compression}: runs", code == 0, err.strip()):
         continue

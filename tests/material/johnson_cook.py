@@ -31,7 +31,7 @@ import math
 import os
 import subprocess
 from anvil_test import (Checker, arguments, deviation_from_driver, read_csv, run_anvil, run_material_point,
-                        uniaxial_boundary_conditions, uniaxial_cube_scene, write_scene)
+                        test_scene)
 
 args = arguments()
 c = Checker("Johnson-Cook metal against closed forms")
@@ -138,9 +138,11 @@ end_time = (math.exp(target) - 1) / rate
 for label, formulation, integration in (("one point, updated Lagrangian", "updated Lagrangian", "one point"),
                                          ("full, total Lagrangian", "total Lagrangian", "full")):
     name = label.replace(", ", "_").replace(" ", "_")
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=uniaxial_cube_scene(
-        L, end_time, 1e-5, material(indent="  "), f"  set Formulation = {formulation}\n  set Integration = {integration}\n")
-        + uniaxial_boundary_conditions("cube", rate * L))
+    prm = test_scene(args, "tests/material/uniaxial_cube.prm", name,
+                     {"Simulation/End time": end_time, "Simulation/History interval": 1e-5,
+                      "Body cube/Formulation": formulation, "Body cube/Integration": integration,
+                      "Boundary condition pull/Velocity": f"{rate * L}, 0, 0"},
+                     text=f"subsection Body cube\n{material(indent='  ')}\nend\n")
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if not c.check_true(f"{label}: anvil exits 0", code == 0, err.strip()[-300:]):
         continue

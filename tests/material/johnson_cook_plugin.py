@@ -13,8 +13,7 @@ against the exported CMake package and loaded at run time with
 import math
 import os
 import subprocess
-from anvil_test import (Checker, arguments, build_plugin, read_csv, run_anvil, uniaxial_boundary_conditions,
-                        uniaxial_cube_scene, write_scene)
+from anvil_test import Checker, arguments, build_plugin, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("Johnson-Cook plugin (doc/extending.md)")
@@ -58,9 +57,10 @@ for rate in (1.0, 100.0):
 # The solver: one hexahedron at 100 1/s to 10 %.
 L, rate, target = 0.01, 100.0, 0.1
 end_time = (math.exp(target) - 1) / rate
-prm = write_scene(os.path.join(args.work_dir, "cube.prm"), text=uniaxial_cube_scene(
-    L, end_time, 1e-5, "  subsection Material\n    set Model = Johnson-Cook\n  end",
-    top=f"set Additional shared libraries = {library}\n") + uniaxial_boundary_conditions("cube", rate * L))
+prm = test_scene(args, "tests/material/uniaxial_cube.prm", "cube",
+                 {"Additional shared libraries": library, "Simulation/End time": end_time,
+                  "Simulation/History interval": 1e-5, "Body cube/Material/Model": "Johnson-Cook",
+                  "Boundary condition pull/Velocity": f"{rate * L}, 0, 0"})
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if c.check_true("the scene loads the plugin and runs", code == 0, err.strip()):
     probe = read_csv(os.path.join(args.work_dir, "output", "cube", "probe_corner.csv"))
@@ -69,8 +69,8 @@ if c.check_true("the scene loads the plugin and runs", code == 0, err.strip()):
     c.check(f"solver against the driver: stress at {strain:.4f} strain", probe["stress_xx"][-1],
             reference["stress_xx"][i], 0.01, relative=True)
 
-prm = write_scene(os.path.join(args.work_dir, "missing.prm"),
-                  text="set Additional shared libraries = no_such_plugin.so\n" + open(prm).read().split("\n", 1)[1])
+prm = test_scene(args, "tests/material/uniaxial_cube.prm", "missing",
+                 {"Additional shared libraries": "no_such_plugin.so", "Body cube/Material/Model": "Johnson-Cook"})
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 c.check_true("a missing library: exit 2, one line naming it", code == 2 and len(err.strip().splitlines()) == 1 and
              "no_such_plugin.so" in err and "Additional shared libraries" in err, err.strip())

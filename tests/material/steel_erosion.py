@@ -1,7 +1,7 @@
 """Failure and erosion of plastic-kinematic steel (Table 1, f_s = 0.12).
 
-A quarter of a 100 mm steel bar (10 x 10 mm full section, symmetry planes
-y = 0 and z = 0) flies at 50 m/s along its axis and is held at x = 0 from
+A quarter of a 100 mm steel bar (tests/material/steel_erosion.prm; 10 x 10
+mm full section, symmetry planes y = 0 and z = 0) flies at 50 m/s along its axis and is held at x = 0 from
 t = 0: a tensile plastic wave (rho c v = 2 GPa > sigma_0) runs from the
 held end, where elements reach the failure strain and are eroded; the bar
 then separates. (An initial velocity, not a pulled end: an impulsive
@@ -19,58 +19,15 @@ Checks:
   np = 1 (largest relative difference below 1e-8).
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("erosion of failed steel elements")
-text = """
-# Steel bar pulled to failure at one end (erosion test).
-set Bodies = bar
-set Boundary conditions = hold, sym_y, sym_z
-subsection Simulation
-  set End time = 4e-4
-  set History interval = 2e-6
-  set Print wall times = false
-end
-subsection Body bar
-  subsection Mesh
-    set Source = box
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.1, 0.005, 0.005
-    set Subdivisions = 40, 2, 2
-  end
-  subsection Material
-    set Model = plastic kinematic
-    subsection plastic kinematic
-      set Preset = Table 1 steel
-      set Strain rate effects = none
-      set Erosion = true
-    end
-  end
-  set Initial velocity = 50, 0, 0
-end
-subsection Boundary condition hold
-  set Body = bar
-  set Boundary ids = 0
-  set Components = x
-end
-subsection Boundary condition sym_y
-  set Body = bar
-  set Boundary ids = 2
-  set Components = y
-end
-subsection Boundary condition sym_z
-  set Body = bar
-  set Boundary ids = 4
-  set Components = z
-end
-"""
 fs = 0.12
 results = {}
 for np in (1, 2):
     name = f"erosion_np{np}"
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=text)
+    prm = test_scene(args, "tests/material/steel_erosion.prm", name)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     print(out[-600:])
     if not c.check_true(f"np = {np}: anvil exits 0", code == 0, err.strip()):

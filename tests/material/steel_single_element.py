@@ -9,7 +9,8 @@ about 130 per step for this element (doc/theory.md): its stress chatters
 far beyond 1 %. The rate of the plastic increment, solved with the return,
 is stable at any step.
 
-The cube (10 mm) has symmetry planes on its x-, y- and z- faces and its x+
+The cube (10 mm, tests/material/uniaxial_cube.prm) has symmetry planes on
+its x-, y- and z- faces and its x+
 face moves at 0.01 m/s (strain rate 1/s): the load takes ~3e4 stable steps,
 so inertia adds less than rho c v = 0.5 MPa (0.1 % of the yield stress).
 Compared: the Cauchy stress sigma_xx of the element (probe) against the
@@ -21,7 +22,7 @@ effective plastic strain at the end against the driver's.
 """
 import os
 from anvil_test import (Checker, arguments, deviation_from_driver, read_csv, run_anvil, run_material_point,
-                        uniaxial_boundary_conditions, uniaxial_cube_scene, write_scene)
+                        test_scene)
 
 args = arguments()
 c = Checker("single steel hexahedron through the solver against the material-point driver")
@@ -52,9 +53,9 @@ for law, label, formulation, integration in cases:
     ref = reference[law]
     label = f"{label}, rate effects {law}"
     name = label.replace(", ", "_").replace(" ", "_").replace("-", "_")
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=uniaxial_cube_scene(
-        L, end_time, 1e-4, material, f"  set Formulation = {formulation}\n  set Integration = {integration}\n")
-        + uniaxial_boundary_conditions("cube", rate * L))
+    prm = test_scene(args, "tests/material/uniaxial_cube.prm", name,
+                     {"Body cube/Formulation": formulation, "Body cube/Integration": integration,
+                      "Body cube/Material/plastic kinematic/Strain rate effects": law})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if not c.check_true(f"{label}: anvil exits 0", code == 0, err.strip()):
         continue

@@ -1,4 +1,5 @@
-"""Bond-slip reinforcement (seed Eq. (68)).
+"""Bond-slip reinforcement (seed Eq. (68)); the scenes are tests/rebar/pullout.prm,
+bond_slip_prism.prm (and _free) and free_bar.prm.
 
 1. Pull-out: a 16 mm bar along the axis of an elastic block (0.1 m cube,
    E = 30 GPa, nu = 0.2, full integration: the bond loads a line of nodes,
@@ -24,8 +25,7 @@
 """
 import math
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("bond-slip reinforcement")
@@ -34,65 +34,8 @@ tau_max = G * Smax
 
 
 def pullout(name, np, end_time=0.05):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Pull-out of a bar from an elastic block (bond-slip).
-set Bodies = block
-set Rebars = bar
-set Boundary conditions = bearing
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 2.5e-4
-  set Print wall times = false
-end
-subsection Body block
-  subsection Mesh
-    set Lower corner = 0, -0.05, -0.05
-    set Upper corner = 0.1, 0.05, 0.05
-    set Subdivisions = 10, 10, 10
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 2400
-      set Young's modulus = 3e10
-      set Poisson's ratio = 0.2
-    end
-  end
-  # The bond loads the block along a line of nodes: one-point elements with
-  # viscous hourglass control would let that line creep in hourglass modes.
-  set Integration = full
-end
-subsection Boundary condition bearing
-  set Body = block
-  set Boundary ids = 1
-  set Components = x
-end
-subsection Rebar bar
-  set Host body = block
-  set Layout = longitudinal
-  set Axis = x
-  set Member lower corner = 0.0, -0.05, -0.05
-  set Member upper corner = 0.1, 0.05, 0.05
-  set Bars per face = 1
-  set Diameter = 0.016
-  set Element length = 0.01
-  set Coupling = bond-slip
-  set Pull velocity = 0.02, 0, 0
-  set Probe point = 0.055, 0, 0
-  # The bar's 10 mm steel elements would set the step (1.98 us against the
-  # block's 2.53 us); scaled, the pull-out takes a fifth fewer steps and is
-  # as quasi-static (tests/rebar/mass_scaling.py).
-  set Mass scaling time step = 2.6e-6
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-end
-""")
+    prm = test_scene(args, "tests/rebar/pullout.prm", name, {"Simulation/End time": end_time})
+
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"{name}: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()
@@ -122,71 +65,9 @@ c.check_below(f"np = 2 against np = 1: largest relative difference of rebar_bar.
 # A reinforced block flying at 1 m/s, bars with their own nodes: momentum of
 # block and bars together.
 def composite(name, coupling, G_s=5e10, v0=0.0, pull=True, end_time=0.01):
-    bc = """set Boundary conditions = base, top
-subsection Boundary condition base
-  set Body = prism
-  set Boundary ids = 4
-  set Components = z
-end
-subsection Boundary condition top
-  set Body = prism
-  set Boundary ids = 5
-  set Type = velocity
-  set Velocity = 0, 0, 0.01
-  set Components = z
-end""" if pull else ""
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Bar in a prism, {coupling}.
-set Bodies = prism
-set Rebars = bar
-set Probes = mid
-{bc}
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 1e-4
-  set Print wall times = false
-end
-subsection Body prism
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.1, 0.1, 1
-    set Subdivisions = 5, 5, 50
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 2400
-      set Young's modulus = 3e10
-      set Poisson's ratio = 0
-    end
-  end
-  set Integration = full
-  set Initial velocity = 0, 0, {v0}
-end
-subsection Rebar bar
-  set Host body = prism
-  set Axis = z
-  set Member lower corner = 0, 0, 0
-  set Member upper corner = 0.1, 0.1, 1
-  set Bars per face = 1
-  set Diameter = 0.02
-  set Element length = 0.02
-  set Coupling = {coupling}
-  set Bond modulus = {G_s}
-  set Probe point = 0.05, 0.05, 0.51
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-end
-subsection Probe mid
-  set Point = 0.05, 0.05, 0.52
-end
-""")
+    prm = test_scene(args, "tests/rebar/bond_slip_prism.prm" if pull else "tests/rebar/bond_slip_prism_free.prm", name,
+                     {"Simulation/End time": end_time, "Body prism/Initial velocity": f"0, 0, {v0}",
+                      "Rebar bar/Coupling": coupling, "Rebar bar/Bond modulus": G_s})
     code, out, err = run_anvil(args.anvil, prm, np=1, cwd=args.work_dir)
     if not c.check_true(f"{name}: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()
@@ -213,52 +94,8 @@ c.check("G_s large: force split / perfect bond's", ratios["stiff_bond"], ratios[
 # the fixed-free truss rings at its fundamental period 4 L / c, the force
 # at the pulled end switching between +Z v and -Z v every 2 L / c
 # (Z = rho c A).
-prm = write_scene(os.path.join(args.work_dir, "free_bar.prm"), text="""
-# A free steel bar pulled at one end (truss frequency).
-set Bodies = host
-set Rebars = bar
-subsection Simulation
-  set End time = 0.0016
-  set History interval = 0
-  set Print wall times = false
-end
-subsection Body host
-  subsection Mesh
-    set Lower corner = 0, -0.05, -0.05
-    set Upper corner = 1, 0.05, 0.05
-    set Subdivisions = 2, 1, 1
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 2400
-      set Young's modulus = 3e10
-      set Poisson's ratio = 0.2
-    end
-  end
-end
-subsection Rebar bar
-  set Host body = host
-  set Axis = x
-  set Member lower corner = 0, -0.05, -0.05
-  set Member upper corner = 1, 0.05, 0.05
-  set Bars per face = 1
-  set Diameter = 0.02
-  set Element length = 0.01
-  set Coupling = bond-slip
-  set Bond modulus = 1e-3
-  set Pull velocity = 0.1, 0, 0
-  set Probe point = 0.995, 0, 0
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-end
-""")
+prm = test_scene(args, "tests/rebar/free_bar.prm", "free_bar")
+
 code, out, err = run_anvil(args.anvil, prm, np=1, cwd=args.work_dir)
 if c.check_true("free bar: anvil exits 0", code == 0, err.strip()[-300:]):
     r = read_csv(os.path.join(args.work_dir, "output", "free_bar", "rebar_bar.csv"))

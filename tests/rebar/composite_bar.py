@@ -1,8 +1,8 @@
 """Reinforcement with perfect bond: a steel bar embedded in an elastic
 concrete prism under axial load (seed sections 5.1, 5.3).
 
-Prism 0.1 x 0.1 x 1 m (E_c = 30 GPa, nu = 0, so that the section deforms
-uniaxially), one 20 mm bar along its axis (E_s = 200 GPa), base held in z,
+Prism 0.1 x 0.1 x 1 m (tests/rebar/composite_bar.prm; E_c = 30 GPa, nu = 0,
+so that the section deforms uniaxially), one 20 mm bar along its axis (E_s = 200 GPa), base held in z,
 top pulled at 0.01 m/s. With perfect bond the bar and the concrete around it
 share the strain, so the axial forces split as E A:
   N_s / N_c = E_s A_s / (E_c A_c),  A_c = 0.01 m^2 (the embedded bar
@@ -19,8 +19,7 @@ np = 2 gives the composite bar's histories of np = 1 (relative 1e-8), the
 bar crossing the partition.
 """
 import os
-from anvil_test import (Checker, arguments, max_relative_difference, read_csv, run_anvil,
-                        write_scene)
+from anvil_test import Checker, arguments, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("composite bar with perfect bond")
@@ -30,71 +29,10 @@ Ac = 0.1 * 0.1
 
 
 def scene(name, n, pull=True, v0=0.0, end_time=0.01):
-    bcs = "set Boundary conditions = base, top" if pull else ""
-    bc_text = """
-subsection Boundary condition base
-  set Body = prism
-  set Boundary ids = 4
-  set Components = z
-end
-subsection Boundary condition top
-  set Body = prism
-  set Boundary ids = 5
-  set Type = velocity
-  set Velocity = 0, 0, 0.01
-  set Components = z
-end""" if pull else ""
-    return write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Steel bar embedded in a concrete prism (perfect bond).
-set Bodies = prism
-set Rebars = bar
-set Probes = mid
-{bcs}
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 1e-4
-  set Print wall times = false
-end
-subsection Body prism
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = 0.1, 0.1, 1
-    set Subdivisions = {n}, {n}, 50
-  end
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 2400
-      set Young's modulus = {Ec}
-      set Poisson's ratio = 0
-    end
-  end
-  set Initial velocity = 0, 0, {v0}
-end
-{bc_text}
-subsection Rebar bar
-  set Host body = prism
-  set Layout = longitudinal
-  set Axis = z
-  set Member lower corner = 0, 0, 0
-  set Member upper corner = 0.1, 0.1, 1
-  set Bars per face = 1
-  set Diameter = {d}
-  set Element length = 0.02
-  set Probe point = 0.05, 0.05, 0.51
-  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = {Es}
-      set Poisson's ratio = 0.3
-    end
-  end
-end
-subsection Probe mid
-  set Point = 0.05, 0.05, 0.52
-end
-""")
+    overrides = {"Simulation/End time": end_time, "Body prism/Mesh/Subdivisions": f"{n}, {n}, 50",
+                 "Body prism/Initial velocity": f"0, 0, {v0}"}
+    return test_scene(args, "tests/rebar/composite_bar.prm" if pull else "tests/rebar/composite_bar_free.prm", name,
+                      overrides)
 
 
 def run(name, np=1, **kw):
@@ -136,20 +74,18 @@ c.check("rebar_bar_NNNN.vtu: largest axial force / rebar_bar.csv", max(forces),
 # The same bar from a polyline file, and a stirrup layout's ratios.
 with open(os.path.join(args.work_dir, "bar.txt"), "w") as f:
     f.write("0.05 0.05 0\n0.05 0.05 0.5\n0.05 0.05 1\n")
-text = open(scene("composite_poly", n=5)).read().replace(
-    "  set Layout = longitudinal", "  set Layout = polylines\n  set File name = bar.txt")
-with open(os.path.join(args.work_dir, "composite_poly.prm"), "w") as f:
-    f.write(text)
-code, out, err = run_anvil(args.anvil, os.path.join(args.work_dir, "composite_poly.prm"), cwd=args.work_dir)
+prm = test_scene(args, "tests/rebar/composite_bar.prm", "composite_poly",
+                 {"Body prism/Mesh/Subdivisions": "5, 5, 50", "Rebar bar/Layout": "polylines",
+                  "Rebar bar/File name": "bar.txt"})
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if c.check_true("polyline layout: anvil exits 0", code == 0, err.strip()[-300:]):
     r = read_csv(os.path.join(args.work_dir, "output", "composite_poly", "rebar_bar.csv"))
     c.check("polyline layout: largest axial force / longitudinal layout's", r["max_axial_force"][-1],
             results[5]["rebar_bar"]["max_axial_force"][-1], 1e-9, relative=True)
-text = open(scene("stirrups", n=5)).read().replace(
-    "  set Layout = longitudinal", "  set Layout = stirrups\n  set Spacing = 0.1\n  set Cover = 0.01")
-with open(os.path.join(args.work_dir, "stirrups.prm"), "w") as f:
-    f.write(text)
-code, out, err = run_anvil(args.anvil, os.path.join(args.work_dir, "stirrups.prm"), cwd=args.work_dir,
+prm = test_scene(args, "tests/rebar/composite_bar.prm", "stirrups",
+                 {"Body prism/Mesh/Subdivisions": "5, 5, 50", "Rebar bar/Layout": "stirrups", "Rebar bar/Spacing": 0.1,
+                  "Rebar bar/Cover": 0.01})
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir,
                            extra_args=["--check"])
 line = next((l for l in out.splitlines() if "stirrups of" in l), "")
 print("   " + line.strip())

@@ -1,8 +1,9 @@
 """The boundary-condition plugin of doc/extending.md ('A boundary condition
 as a plugin', doc/examples/harmonic_motion), built outside Anvil's tree
 against the exported CMake package and loaded with 'Additional shared
-libraries', on tests/verification/velocity_ramp.prm with its top shaken
-instead of ramped: 'Type = harmonic', A = 0.1 mm along z, f = 1 kHz.
+libraries', on tests/verification/harmonic_motion.prm: the bar of
+velocity_ramp.prm with its top shaken instead of ramped, 'Type = harmonic',
+A = 0.1 mm along z, f = 1 kHz.
 
 - The top's displacement against A sin(2 pi f t) at every row over two
   periods (the held nodes take v at each half step: the midpoint rule of
@@ -14,25 +15,19 @@ instead of ramped: 'Type = harmonic', A = 0.1 mm along z, f = 1 kHz.
 """
 import math
 import os
-from anvil_test import Checker, arguments, build_plugin, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, build_plugin, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("boundary-condition plugin 'harmonic' (doc/extending.md)")
 library = build_plugin(c, args, "harmonic_motion", "libharmonic_motion.so")
-scene = os.path.join(os.path.abspath(args.source_dir), "tests", "verification", "velocity_ramp.prm")
 A, f = 1e-4, 1000.0
 omega = 2 * math.pi * f
 
 
 def shaken(name, frequency, load=True):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), include=scene, text=f"""
-{'set Additional shared libraries = ' + library if load else ''}
-subsection Boundary condition top
-  set Type = harmonic
-  set Amplitude = 0, 0, {A}
-  set Frequency = {frequency}
-end
-""")
+    prm = test_scene(args, "tests/verification/harmonic_motion.prm", name,
+                     {"Additional shared libraries": library if load else "",
+                      "Boundary condition top/Frequency": frequency})
     return run_anvil(args.anvil, prm, np=1, cwd=args.work_dir)
 
 

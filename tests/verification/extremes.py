@@ -36,7 +36,7 @@ a quarter of a slab element of the face, penetration ratio below 0.5.
 import math
 import os
 import re
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, write_scene, read_csv
 
 args = arguments()
 c = Checker("stability at the extremes")
@@ -188,46 +188,21 @@ for f in (1, 10):
         print(f"    steps {r['steps']:.0f} against {base['steps']:.0f} at 0.1; the springs set "
               f"{r['contact_steps']:.0f} of them")
 
-# The block of tests/verification/stability.py.
-block = """set Bodies = block
-set Boundary conditions = wall
-subsection Simulation
-  set End time = {end}
-  set Print wall times = false
-  set Plots = false
-  set Time step safety factor = {factor}
-  set History interval = {history}
-{extra}end
-subsection Body block
-  subsection Mesh
-    set Upper corner = 1, 1, 1
-    set Subdivisions = {n}, {n}, {n}
-  end
-  subsection Material
-    subsection elastic
-      set Density = 0.01
-      set Young's modulus = 100
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = {velocity}
-  set Formulation = {formulation}
-end
-subsection Boundary condition wall
-  set Body = block
-  set Boundary ids = 0
-end
-"""
-prm = write_scene(os.path.join(work, "factor105.prm"), text=block.format(
-    end=13, factor=1.05, history=0, extra="", n=6, velocity="1, 0.5, 0", formulation="updated Lagrangian"))
+# The block of tests/verification/stability.prm.
+def block(name, end, factor, history, n, velocity, formulation="updated Lagrangian", **more):
+    return test_scene(args, "tests/verification/stability.prm", name,
+                      {"Simulation/End time": end, "Simulation/Time step safety factor": factor,
+                       "Simulation/History interval": history, "Body block/Mesh/Subdivisions": f"{n}, {n}, {n}",
+                       "Body block/Initial velocity": velocity, "Body block/Formulation": formulation, **more})
+
+
+prm = block("factor105", 13, 1.05, 0, 6, "1, 0.5, 0")
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 print("  time-step factor 1.05:", err.strip()[-300:])
 c.check_true("time-step factor 1.05: stops with exit 3 and one located line naming the instability",
              code == 3 and stopped_clearly(err) and "unstable" in err, f"exit {code}")
 
-prm = write_scene(os.path.join(work, "inversion.prm"), text=block.format(
-    end=0.2, factor=0.9, history=0, extra="  set Minimum time step ratio = 0\n", n=6, velocity="-90, 0, 0",
-    formulation="updated Lagrangian"))
+prm = block("inversion", 0.2, 0.9, 0, 6, "-90, 0, 0", **{"Simulation/Minimum time step ratio": 0})
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 print("  driven to inversion:", err.strip()[-300:])
 c.check_true("element driven to inversion: stops with exit 3 and one located line that says an element "
@@ -236,17 +211,10 @@ c.check_true("element driven to inversion: stops with exit 3 and one located lin
 
 # 10^6 steps of elastic ringing: full integration (no hourglass control),
 # no bulk viscosity, total Lagrangian (hyperelastic): nothing dissipates.
-prm = write_scene(os.path.join(work, "million.prm"), text=block.format(
-    end=1e9, factor=0.9, history=0.5, extra="  set Maximum number of steps = 1000000\n  "
-    "set Progress interval = 0\n", n=2, velocity="1, 0.5, 0", formulation="total Lagrangian") + """
-subsection Body block
-  set Integration = full
-  subsection Bulk viscosity
-    set Linear coefficient = 0
-    set Quadratic coefficient = 0
-  end
-end
-""")
+prm = block("million", 1e9, 0.9, 0.5, 2, "1, 0.5, 0", "total Lagrangian",
+            **{"Simulation/Maximum number of steps": 1000000, "Simulation/Progress interval": 0,
+               "Body block/Integration": "full", "Body block/Bulk viscosity/Linear coefficient": 0,
+               "Body block/Bulk viscosity/Quadratic coefficient": 0})
 # (Maximum number of steps stops the run with exit 3 at 10^6 steps: the
 # end time is out of reach on purpose.)
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
@@ -269,52 +237,8 @@ c.check_below("10^6 steps: no trend (mean of the last five marks minus that of t
               abs(sum(drifts[5:]) - sum(drifts[:5])) / 5, 0.01)
 
 # Stiff on soft, fine on coarse.
-prm = write_scene(os.path.join(work, "stiff_on_soft.prm"), text="""set Bodies = cube, slab
-set Contact pairs = drop
-set Boundary conditions = base
-subsection Simulation
-  set End time = 4e-4
-  set Print wall times = false
-  set Plots = false
-end
-subsection Body cube
-  subsection Mesh
-    set Lower corner = -0.01, -0.01, 0.0001
-    set Upper corner = 0.01, 0.01, 0.0201
-    set Subdivisions = 10, 10, 10
-  end
-  subsection Material
-    subsection elastic
-      set Density = 7850
-      set Young's modulus = 2e11
-      set Poisson's ratio = 0.3
-    end
-  end
-  set Initial velocity = 0, 0, -5
-end
-subsection Body slab
-  subsection Mesh
-    set Lower corner = -0.1, -0.1, -0.1
-    set Upper corner = 0.1, 0.1, 0
-    set Subdivisions = 10, 10, 5
-  end
-  subsection Material
-    subsection elastic
-      set Density = 2400
-      set Young's modulus = 3e9
-      set Poisson's ratio = 0.2
-    end
-  end
-end
-subsection Boundary condition base
-  set Body = slab
-  set Boundary ids = 4
-end
-subsection Contact pair drop
-  set First body = slab
-  set Second body = cube
-end
-""")
+prm = test_scene(args, "tests/verification/stiff_on_soft.prm", "stiff_on_soft")
+
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 if c.check_true("steel on soft concrete, 1:10 elements: runs", code == 0, err.strip()[-300:]):
     d = os.path.join(work, "output", "stiff_on_soft")

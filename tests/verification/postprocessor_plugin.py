@@ -1,7 +1,8 @@
 """The postprocessor plugin of doc/extending.md ('A postprocessor as a
 plugin'), built outside Anvil's tree against the exported CMake package,
-loaded with 'Additional shared libraries' and run in prm/elastic_rod_impact
-(two free rods, 0.1 kg each, rod A at 1 m/s into rod B at rest): its
+loaded with 'Additional shared libraries' and run in
+tests/verification/centre_of_mass.prm (prm/elastic_rod_impact:
+two free rods, 0.1 kg each, rod A at 1 m/s into rod B at rest): its
 centre_of_mass.csv against momentum conservation.
 
 - The mass it sums equals 2 rho V = 0.2 kg (to 1e-12).
@@ -19,24 +20,17 @@ centre_of_mass.csv against momentum conservation.
   unknown body in that entry stops the run with one line naming the entry.
 """
 import os
-from anvil_test import Checker, arguments, build_plugin, max_relative_difference, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, build_plugin, max_relative_difference, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("centre-of-mass postprocessor plugin (doc/extending.md)")
 library = build_plugin(c, args, "centre_of_mass", "libcentre_of_mass.so")
 
-scene = os.path.join(os.path.abspath(args.source_dir), "prm", "elastic_rod_impact", "elastic_rod_impact.prm")
 rows = {}
 for np in (1, 2):
-    prm = write_scene(os.path.join(args.work_dir, f"rods_{np}.prm"), include=scene, text=f"""
-set Additional shared libraries = {library}
-subsection Simulation
-  set Output directory = output/np{np}
-  set Output interval = 0.3
-  set Print wall times = false
-  set Plots = false
-end
-""")
+    prm = test_scene(args, "tests/verification/centre_of_mass.prm", f"rods_{np}",
+                     {"Additional shared libraries": library, "Simulation/Output directory": f"output/np{np}"})
+
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"np = {np}: the scene loads the plugin and runs", code == 0, err.strip()[-400:]):
         c.finish()
@@ -57,20 +51,10 @@ c.check_below("np = 2 against np = 1, centre of mass rows", max_relative_differe
 
 # The plugin's own parameter.
 for bodies, name in (("rod_b", "rod_b_only"), ("rod_b, rod_c", "unknown_body")):
-    prm = write_scene(os.path.join(args.work_dir, f"{name}.prm"), include=scene, text=f"""
-set Additional shared libraries = {library}
-subsection Simulation
-  set Output directory = output/{name}
-  set Output interval = 0.3
-  set Print wall times = false
-  set Plots = false
-end
-subsection Postprocess
-  subsection centre of mass
-    set Bodies = {bodies}
-  end
-end
-""")
+    prm = test_scene(args, "tests/verification/centre_of_mass.prm", name,
+                     {"Additional shared libraries": library, "Simulation/Output directory": f"output/{name}",
+                      "Postprocess/centre of mass/Bodies": bodies})
+
     code, out, err = run_anvil(args.anvil, prm, np=1, cwd=args.work_dir)
     if name == "unknown_body":
         lines = [l for l in err.strip().splitlines() if l.startswith("anvil: error")]

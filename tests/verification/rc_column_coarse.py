@@ -31,16 +31,14 @@ section (E_ci of Model Code 2010, bars with n = E_s / E_c), within 10 %.
 """
 import math
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("RC column, coarse mesh")
-prm_dir = os.path.join(args.source_dir, "prm", "rc_column_impact")
 
 
-def run(name, base, np=1, text=""):
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                      include=os.path.join(prm_dir, base), text=text)
+def run(name, scene, np=1, overrides=None):
+    prm = test_scene(args, scene if scene.startswith("tests/") else "prm/rc_column_impact/" + scene, name, overrides)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir, plots=True)
     if not c.check_true(f"{name} (np = {np}) runs to its end", code == 0, err.strip()[-400:]):
         c.finish()
@@ -114,13 +112,8 @@ identical = all(open(os.path.join(bond, f)).read() == open(os.path.join(bond_np2
 c.check_true("np = 2 writes the probe, contact and hammer histories of np = 1 (bitwise)", identical)
 # A partition boundary through the contact zone (np = 3): the contact is
 # evaluated per rank, the springs next to the boundary exchanged.
-short = """
-subsection Simulation
-  set End time = 0.004
-  set Output interval = 0
-end
-"""
-early = {np: run(f"bond_slip_4ms_np{np}", "rc_column_impact_coarse.prm", np=np, text=short) for np in (1, 3)}
+short = {"Simulation/End time": 0.004, "Simulation/Output interval": 0}
+early = {np: run(f"bond_slip_4ms_np{np}", "rc_column_impact_coarse.prm", np=np, overrides=short) for np in (1, 3)}
 crossings = summary(early[3]).get("contact_springs_across_partitions", 0)
 c.check_true(f"np = 3: springs of one rank act on another's nodes ({crossings:.0f} in 4 ms)", crossings > 0)
 identical = all(open(os.path.join(early[1], f)).read() == open(os.path.join(early[3], f)).read()
@@ -132,24 +125,8 @@ c.check_below("np = 2 energies against np = 1 (largest difference / E_0; sums in
               diff / e1["total"][0], 1e-8)
 
 # Elastic stiffness against a fixed-fixed Timoshenko beam.
-push = run("elastic_push", "rc_column_impact_common_node_coarse.prm", text="""
-subsection Simulation
-  set End time = 0.025
-  set End kinetic energy fraction = 0
-end
-subsection Body column
-  subsection Hourglass control
-    set Type = stiffness
-  end
-end
-subsection Body hammer
-  set Initial velocity = -0.002, 0, 0
-  subsection Rigid body
-    set Motion      = prescribed
-    set Shape point = 0.110001, 0, 0.5
-  end
-end
-""")
+push = run("elastic_push", "tests/verification/rc_column_push.prm")
+
 contact = read_csv(os.path.join(push, "contact_impact.csv"))
 back = read_csv(os.path.join(push, "probe_back_face.csv"))
 # The second half of the push: force on the column (opposite to that on

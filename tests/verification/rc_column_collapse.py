@@ -1,5 +1,5 @@
 """Collapse load of the seed's RC column (coarse, perfect bond) against a
-section analysis.
+section analysis (tests/verification/rc_column_collapse.prm).
 
 The hammer, given a prescribed motion of 0.5 m/s, pushes the column at the
 impact point (0.5 m above the base, a = 0.5 m, b = 1.0 m) to 40 mm; the top
@@ -20,11 +20,10 @@ P_c), and the member must still carry more than half of P_c at 40 mm.
 """
 import math
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("RC column: collapse load against a section analysis")
-prm_dir = os.path.join(args.source_dir, "prm", "rc_column_impact")
 
 # Section analysis.
 b, h, fc, fy, Es = 0.12, 0.12, 45.4e6, 335e6, 206e9
@@ -60,40 +59,7 @@ Pc = 2 * Mp * (1 / a + 1 / bb)
 print(f"  section: neutral axis {1e3 * cn:.1f} mm, M_p = {1e-3 * Mp:.3f} kN m; P_c = 2 M_p (1/a + 1/b) = "
       f"{1e-3 * Pc:.2f} kN")
 
-prm = write_scene(os.path.join(args.work_dir, "collapse.prm"),
-                  include=os.path.join(prm_dir, "rc_column_impact_common_node_coarse.prm"), text="""
-subsection Simulation
-  set End time = 0.08
-  set End kinetic energy fraction = 0
-  set Output interval = 0
-  set History interval = 1e-4
-  set Plots = false
-end
-subsection Boundary condition top
-  set Components = x, y
-end
-subsection Body column
-  subsection Material
-    subsection concrete damaged plasticity
-      set Strain rate effects = false
-    end
-  end
-end
-subsection Body hammer
-  set Initial velocity = -0.5, 0, 0
-  subsection Rigid body
-    set Motion      = prescribed
-    set Shape point = 0.110001, 0, 0.5
-  end
-end
-""" + "".join(f"""subsection Rebar {layout}
-  subsection Material
-    subsection plastic kinematic
-      set Strain rate effects = none
-    end
-  end
-end
-""" for layout in ("longitudinal", "stirrups")))
+prm = test_scene(args, "tests/verification/rc_column_collapse.prm", "collapse")
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if not c.check_true("the push runs to its end", code == 0, err.strip()[-300:]):
     c.finish()

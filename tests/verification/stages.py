@@ -1,5 +1,8 @@
 """Stages of a scene ('Stages', 'Stage NAME/Changes'): a run goes on, in one
-command, on the state the one before left, with entries changed.
+command, on the state the one before left, with entries changed. The scenes
+are tests/verification/rod_fixed_step.prm, rod_stages.prm,
+damped_block.prm, settle_bar.prm, block_on_floor.prm and
+hammer_removed.prm.
 
 - A stage switch conserves the state: the rod impact split into two stages
   at t = 0.125 s gives, from the split on, the histories of the unsplit run
@@ -25,7 +28,7 @@ command, on the state the one before left, with entries changed.
 import math
 import os
 import subprocess
-from anvil_test import Checker, arguments, read_csv, run_anvil, write_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene, write_scene
 
 args = arguments()
 c = Checker("stages: state conserved, mass damping, settling, removed bodies")
@@ -44,23 +47,11 @@ def summary(*parts):
 
 
 # 1. A stage switch conserves the state.
-fixed = "  set Maximum time step = 1.220703125e-4\n" + quiet
-whole = write_scene(os.path.join(work, "whole.prm"), text=f"""include {rod}
-subsection Simulation
-  set End time = 0.25
-{fixed}end
-""")
-split_text = f"""include {rod}
-set Stages = second
-subsection Simulation
-  set End time = 0.125
-{fixed}end
-subsection Stage second
-  set Changes = Simulation/End time=0.25
-end
-"""
-split = write_scene(os.path.join(work, "split.prm"), text=split_text)
-split2 = write_scene(os.path.join(work, "split_np2.prm"), text=split_text)
+quiet_entries = {"Simulation/Plots": "false", "Simulation/Print wall times": "false",
+                 "Simulation/Overwrite existing output": "true"}
+whole = test_scene(args, "tests/verification/rod_fixed_step.prm", "whole", quiet_entries)
+split = test_scene(args, "tests/verification/rod_stages.prm", "split", quiet_entries)
+split2 = test_scene(args, "tests/verification/rod_stages.prm", "split_np2", quiet_entries)
 r1 = run_anvil(args.anvil, whole, cwd=work)
 r2 = run_anvil(args.anvil, split, cwd=work)
 r3 = run_anvil(args.anvil, split2, np=2, cwd=work)
@@ -90,32 +81,7 @@ if c.check_true("unsplit, split and split on 2 processes run", r1[0] == 0 and r2
 
 # 2. Mass damping: a free block slows as exp(-alpha t).
 v0, alpha, rho, side = 2.0, 40.0, 1000.0, 0.2
-block = """set Bodies = block
-subsection Simulation
-{extra}{quiet}end
-subsection Body block
-  subsection Mesh
-    set Lower corner = 0, 0, 0
-    set Upper corner = {side}, {side}, {height}
-    set Subdivisions = 2, 2, {nz}
-  end
-  subsection Material
-    subsection elastic
-      set Density = {rho}
-      set Young's modulus = 1e7
-      set Poisson's ratio = {nu}
-    end
-  end
-  set Initial velocity = {velocity}
-end
-"""
-prm = write_scene(os.path.join(work, "damped.prm"), text=block.format(
-    extra=f"  set End time = 0.01\n", quiet=quiet, side=side, height=side, nz=2, rho=rho, nu=0.3,
-    velocity=f"{v0}, 0, 0") + f"""set Stages = damped
-subsection Stage damped
-  set Changes = Simulation/Mass damping={alpha}; Simulation/Duration=0.05
-end
-""")
+prm = test_scene(args, "tests/verification/damped_block.prm", "damped", quiet_entries)
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 if c.check_true("damped block runs", code == 0, err.strip()[-300:]):
     m = rho * side ** 3
@@ -135,27 +101,7 @@ if c.check_true("damped block runs", code == 0, err.strip()[-300:]):
 
 # 3. Settling under gravity: the static sag of a bar under its own weight.
 E, H, g = 1e7, 1.0, 9.81
-settle = block.format(extra="  set End time = 0.05\n  set Gravity = 0, 0, -9.81\n", quiet=quiet, side=side,
-                      height=H, nz=10, rho=rho, nu=0.0, velocity="0, 0, 0").replace("1e7", f"{E:g}") + """
-set Boundary conditions = base
-set Probes = top
-subsection Body block
-  set Formulation = total Lagrangian
-end
-subsection Boundary condition base
-  set Body = block
-  set Boundary ids = 4
-end
-subsection Probe top
-  set Point = 0.1, 0.1, 1.0
-end
-set Stages = settle
-subsection Stage settle
-  set Changes = Simulation/Mass damping=300; Simulation/End kinetic to internal ratio=1e-6; \\
-                Simulation/End quiet time=0.05; Simulation/Duration=5
-end
-"""
-prm = write_scene(os.path.join(work, "settle.prm"), text=settle)
+prm = test_scene(args, "tests/verification/settle_bar.prm", "settle", quiet_entries)
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 if c.check_true("settling block runs", code == 0, err.strip()[-300:]):
     s = summary("settle", "settle")
@@ -224,24 +170,8 @@ for name, entry, words in (("bad_summary_probe", "Summary probe = bottom", ["Sum
                  all(w in lines[0] for w in words), err.strip())
 
 # 4. A body taken out: the hammer is removed before it strikes.
-hob = os.path.join(src, "prm", "hammer_on_block", "hammer_on_block.prm")
-prm = write_scene(os.path.join(work, "removed.prm"), text=f"""include {hob}
-set Stages = away
-subsection Simulation
-  set End time = 2e-6
-  set Gravity = 0, 0, 0
-  set History interval = 0
-  set Output interval = 0
-{quiet}end
-subsection Body block
-  subsection Mesh
-    set Subdivisions = 6, 6, 4
-  end
-end
-subsection Stage away
-  set Changes = Simulation/Inactive bodies=hammer; Simulation/Duration=2e-4
-end
-""")
+prm = test_scene(args, "tests/verification/hammer_removed.prm", "removed", quiet_entries)
+
 code, out, err = run_anvil(args.anvil, prm, cwd=work)
 if c.check_true("hammer removed in a stage", code == 0, err.strip()[-300:]):
     d = os.path.join(work, "output", "removed", "away")
