@@ -413,7 +413,9 @@ namespace anvil
     if (owner >= 0)
       info = Utilities::MPI::broadcast(mpi_communicator, info, owner);
 
-    // Leave the last good state on disk.
+    // Leave the last good state on disk, and the histories' rows so far
+    // (whole rows: they wait in memory for up to a second otherwise).
+    flush_histories();
     position = balance.good_position;
     velocity = balance.good_velocity;
     position.update_ghost_values();
@@ -596,9 +598,12 @@ namespace anvil
         if (last)
           break;
         if (step_number >= parameters.max_steps)
-          throw NumericalFailure("the run reached 'Maximum number of steps' = " +
-                                 std::to_string(parameters.max_steps) + " at t = " +
-                                 std::to_string(time) + " s");
+          {
+            flush_histories();
+            throw NumericalFailure("the run reached 'Maximum number of steps' = " +
+                                   std::to_string(parameters.max_steps) + " at t = " +
+                                   std::to_string(time) + " s");
+          }
 
         advance(clock);
       }

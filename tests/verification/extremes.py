@@ -222,6 +222,11 @@ e = read_csv(os.path.join(work, "output", "million", "energy.csv"))
 m = re.search(r"reached 'Maximum number of steps' = (\d+)", err)
 c.check_true("10^6 steps: the run reaches its step limit", code == 3 and m is not None and m.group(1) == "1000000",
              err.strip()[-200:])
+# The histories reach the stop: their rows are flushed before the run stops
+# (they wait in memory for up to a second otherwise).
+stop = re.search(r"at t = ([0-9.e+-]+) s", err)
+c.check_below("10^6 steps: time of the stop - last row of energy.csv, over the history interval 0.5 s",
+              (float(stop.group(1)) - e["time"][-1]) / 0.5 if stop else float("inf"), 1.0)
 # The held face stops at the first step (the reaction's work is external);
 # from then on total - external work is the block's energy.
 level = [t - w for t, w in zip(e["total"], e["external_work"])]

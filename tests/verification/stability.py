@@ -21,6 +21,7 @@ first elements flatten, the stable step falls below 0.8 of the first one,
 and the run stops with the same kind of line, naming the ratio.
 """
 import os
+import re
 from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
@@ -49,6 +50,13 @@ for integration in ("one point", "full"):
                  and all(k in message for k in ("numerical failure at t =", "step", "element", "near (", "unstable")))
     c.check_true(f"{integration}: last good state written",
                  os.path.exists(os.path.join(args.work_dir, f"output/unstable_{tag}/last_good.pvtu")))
+    # The histories hold every step before the failure ('History interval'
+    # 0: a row a step, from step 0): they are flushed before the run stops.
+    failed = re.search(r"numerical failure at t = [0-9.e+-]+ s, step (\d+)", message)
+    rows = read_csv(os.path.join(args.work_dir, f"output/unstable_{tag}/energy.csv"))["time"]
+    c.check_true(f"{integration}: energy.csv holds a row for each step before the failing one",
+                 failed is not None and len(rows) >= int(failed.group(1)),
+                 f"{len(rows)} rows, failure at step {failed.group(1) if failed else '?'}")
 
 prm = test_scene(args, scene, "collapse",
                  {"Body block/Initial velocity": "-30, 0, 0", "Simulation/Minimum time step ratio": 0.8})
