@@ -242,25 +242,6 @@ def graded(n, r):
     return x
 
 
-def write_hexahedra(path, nodes, n, elset):
-    """Structured n[0] x n[1] x n[2] hexahedra over the node list 'nodes'
-    (x fastest, then y, then z) as an ABAQUS .inp file."""
-    node = lambda i, j, k: 1 + i + (n[0] + 1) * (j + (n[1] + 1) * k)
-    lines = ["*NODE"] + [f"{i + 1}, {p[0]:.14g}, {p[1]:.14g}, {p[2]:.14g}" for i, p in enumerate(nodes)]
-    lines.append(f"*ELEMENT, TYPE=C3D8, ELSET={elset}")
-    e = 1
-    for k in range(n[2]):
-        for j in range(n[1]):
-            for i in range(n[0]):
-                v8 = [node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
-                      node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
-                      node(i, j + 1, k + 1)]
-                lines.append(f"{e}, " + ", ".join(map(str, v8)))
-                e += 1
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-
-
 def ball_nodes(R, n, r):
     """Nodes of a quarter ball of radius R (x, y >= 0), n x n x 2n
     hexahedra, finer towards its south pole (0, 0, -R): a graded block
@@ -275,12 +256,6 @@ def ball_nodes(R, n, r):
                 s = R * max(abs(x), abs(y), abs(z)) / norm if norm > 0 else 0.0
                 nodes.append((x * s, y * s, z * s))
     return nodes, (n, n, 2 * n)
-
-
-def write_ball(path, R, n, r):
-    nodes, shape = ball_nodes(R, n, r)
-    write_hexahedra(path, nodes, shape, "BALL")
-    return nodes, shape
 
 
 def lumped_masses(nodes, n, rho):
@@ -308,34 +283,6 @@ def lumped_masses(nodes, n, rho):
     return m
 
 
-def plane_condition(name, body, axis, at=0.0, components=None):
-    """Scene text of a boundary condition 'name' on the nodes of 'body' in
-    the plane x_axis = at (axis 'x', 'y' or 'z', a box 1e-7 thick): by
-    default the symmetry condition u_axis = 0; 'components' fixes others."""
-    i = "xyz".index(axis)
-    lower = [-1e3] * 3
-    upper = [1e3] * 3
-    lower[i], upper[i] = at - 1e-7, at + 1e-7
-    return (f"subsection Boundary condition {name}\n  set Body = {body}\n  set Selection = box\n"
-            f"  set Box lower corner = {', '.join(f'{v:.9g}' for v in lower)}\n"
-            f"  set Box upper corner = {', '.join(f'{v:.9g}' for v in upper)}\n"
-            f"  set Components = {components or axis}\nend\n")
-
-
-def elastic_material(density, E, nu):
-    """Scene text of a body's 'subsection Material': elastic, with its
-    density, Young's modulus and Poisson's ratio (indented for a body)."""
-    return f"""  subsection Material
-    set Model = elastic
-    subsection elastic
-      set Density         = {density:g}
-      set Young's modulus = {E:g}
-      set Poisson's ratio = {nu:g}
-    end
-  end
-"""
-
-
 def check_hertz_speeds(c, speeds, hertz, run, tolerance):
     """Hertz's impact at each of 'speeds': run(v) gives (peak force,
     contact time, largest balance error), hertz(v) the closed form's (F_max,
@@ -356,45 +303,3 @@ def check_hertz_speeds(c, speeds, hertz, run, tolerance):
     c.check("exponent of v in the peak force", math.log(results[hi][0] / results[lo][0]) / span, 1.2, 0.02)
     c.check("exponent of v in the contact time", math.log(results[hi][1] / results[lo][1]) / span, -0.2, 0.02)
     return results
-
-
-def hertz_ball_scene(inp, R, E, nu, rho, v, penalty=None, end_time=0.012):
-    """Scene text of an elastic quarter ball (mesh file 'inp', radius R,
-    symmetry planes x = 0 and y = 0) dropped at v on an exact rigid plane
-    just below it (Hertz's problem), history every 2e-5 s; contact at the
-    default enforcement, or the penalty at the factor 'penalty'."""
-    contact = "" if penalty is None else f"  set Algorithm = penalty\n  set Penalty scale factor = {penalty}\n"
-    return f"""# Elastic quarter sphere dropped on a rigid plane (Hertz).
-set Bodies = floor, ball
-set Contact pairs = hit
-set Boundary conditions = sym_x, sym_y
-subsection Simulation
-  set End time = {end_time}
-  set History interval = 2e-5
-end
-subsection Body floor
-  subsection Mesh
-    set Lower corner = 0.2, 0.2, -0.1
-    set Upper corner = 0.21, 0.21, -0.09
-  end
-  subsection Material
-    set Model = rigid
-  end
-  subsection Rigid body
-    set Contact shape = plane
-    set Shape point = 0, 0, {-R - 1e-5}
-    set Shape direction = 0, 0, 1
-  end
-end
-subsection Body ball
-  subsection Mesh
-    set Source = file
-    set File name = {inp}
-  end
-{elastic_material(rho, E, nu)}  set Initial velocity = 0, 0, {-v}
-end
-{plane_condition("sym_x", "ball", "x")}{plane_condition("sym_y", "ball", "y")}subsection Contact pair hit
-  set First body = floor
-  set Second body = ball
-{contact}end
-"""

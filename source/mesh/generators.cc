@@ -1,7 +1,7 @@
 /**
  * @file
- * Mesh sources built by deal.II's generators: 'box', 'cylinder' and
- * 'sphere' (MeshSources::Interface).
+ * Mesh sources built by deal.II's generators: 'box', 'cylinder', 'sphere'
+ * and the graded 'ball' (MeshSources::Interface).
  */
 #include <anvil/mesh/source.h>
 #include <anvil/utilities/input_error.h>
@@ -9,7 +9,9 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <iomanip>
 #include <sstream>
 
@@ -19,7 +21,7 @@ namespace anvil::MeshSources
   {
     void declare_radius(dealii::ParameterHandler &prm)
     {
-      prm.declare_entry("Radius", "0.5", dealii::Patterns::Double(0.), "Cylinder and sphere: radius. Units: m.");
+      prm.declare_entry("Radius", "0.5", dealii::Patterns::Double(0.), "Cylinder, sphere and ball: radius. Units: m.");
     }
   } // namespace
 
@@ -194,12 +196,110 @@ namespace anvil::MeshSources
   };
 
 
+  /**
+   * A ball graded towards its south pole (0, 0, -R), for an impact on it
+   * there (Hertz): a block of hexahedra, graded, mapped onto the ball by
+   * p -> R p |p|_inf / |p|_2, which takes each cube shell |p|_inf = c to
+   * the sphere of radius c R. 'Part = quarter' keeps x, y >= 0 (symmetry
+   * planes x = 0 and y = 0): the block [0, 1]^2 x [-1, 1] of n x n x 2n
+   * cells; 'full' the block [-1, 1]^3 of 2n x 2n x 2n. Across the axis the
+   * cells grow by 'Ball grading' from the axis outwards, along it by its
+   * square root from the south pole to the north.
+   */
+  class GradedBall : public Interface
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm)
+    {
+      using namespace dealii;
+      declare_radius(prm);
+      prm.declare_entry("Ball part", "full", Patterns::Selection("full|quarter"),
+                        "Ball: 'full', or 'quarter' (x >= 0 and y >= 0, for a model with symmetry planes x = 0 "
+                        "and y = 0; boundary ids 1 on x = 0, 2 on y = 0).");
+      prm.declare_entry("Ball subdivisions", "8", Patterns::Integer(1, 512),
+                        "Ball: elements along a radius across the axis (x and y); 2n from pole to pole along "
+                        "z. Units: none.");
+      prm.declare_entry("Ball grading", "1", Patterns::Double(0.),
+                        "Ball: ratio of successive element sizes across the axis from the axis outwards; "
+                        "along the axis its square root, from the south pole (0, 0, -R) to the north (> 1: "
+                        "finest at the south pole and on the axis, where an impact from below meets the "
+                        "ball). Units: none.");
+    }
+
+    void parse_parameters(dealii::ParameterHandler &prm, const Context &context) override
+    {
+      radius  = prm.get_double("Radius");
+      quarter = prm.get("Ball part") == "quarter";
+      n       = prm.get_integer("Ball subdivisions");
+      grading = prm.get_double("Ball grading");
+      check_size(context.where, "'Ball subdivisions' and 'Global refinements'", "elements",
+                 (quarter ? 2. : 8.) * double(n) * n * n * std::pow(8., context.refinements), 4096.);
+      if (!(radius > 0))
+        throw InputError(context.where + ": the ball needs a positive 'Radius'");
+      if (!(grading > 0))
+        throw InputError(context.where + ": 'Ball grading' must be positive");
+    }
+
+    void create(dealii::Triangulation<3> &tria, const unsigned int refinements, MeshNames *) const override
+    {
+      using namespace dealii;
+      // Sizes r^i, i = 0 .. m-1, scaled to fill [0, 1].
+      const auto graded = [](const unsigned int m, const double r) {
+        std::vector<double> h(m);
+        double              total = 0;
+        for (unsigned int i = 0; i < m; ++i)
+          total += (h[i] = std::pow(r, double(i)));
+        for (double &x : h)
+          x /= total;
+        return h;
+      };
+      const std::vector<double> out = graded(n, grading);
+      std::vector<double>       across(out);
+      if (!quarter)
+        across.insert(across.begin(), out.rbegin(), out.rend());
+      std::vector<double> along = graded(2 * n, std::sqrt(grading));
+      for (double &h : along)
+        h *= 2.;
+      const double lo = quarter ? 0. : -1.;
+      GridGenerator::subdivided_hyper_rectangle(tria, {across, across, along}, Point<3>(lo, lo, -1.),
+                                                Point<3>(1., 1., 1.), /*colorize=*/false);
+      const double R = radius;
+      GridTools::transform(
+        [R](const Point<3> &p) {
+          const double norm = p.norm();
+          const double inf  = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+          return norm > 0 ? Point<3>(p * (R * inf / norm)) : p;
+        },
+        tria);
+      // Boundary ids: 0 on the sphere, 1 and 2 on the symmetry planes.
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const Point<3> c = cell->face(f)->center();
+              cell->face(f)->set_boundary_id(quarter && std::abs(c[0]) < 1e-12 * R ? 1 :
+                                             quarter && std::abs(c[1]) < 1e-12 * R ? 2 :
+                                                                                     0);
+            }
+      tria.refine_global(refinements);
+    }
+
+  private:
+    double       radius = 0, grading = 1;
+    bool         quarter = false;
+    unsigned int n       = 8;
+  };
+
+
   ANVIL_REGISTER_MESH_SOURCE(Box, "box",
                              "a subdivided rectangular block between two corners; boundary ids 0..5 on "
                              "the faces x-, x+, y-, y+, z-, z+.")
   ANVIL_REGISTER_MESH_SOURCE(Cylinder, "cylinder",
                              "axis along x, centred on the origin before the offset; boundary ids 0 hull, "
                              "1 at x-, 2 at x+.")
+  ANVIL_REGISTER_MESH_SOURCE(GradedBall, "ball",
+                             "a ball of 'Radius' centred on the origin before the offset, graded towards its "
+                             "south pole, whole or a quarter; boundary id 0 on the sphere.")
   ANVIL_REGISTER_MESH_SOURCE(Sphere, "sphere",
                              "a ball of 'Radius' centred on the origin before the offset; boundary id 0.")
 } // namespace anvil::MeshSources

@@ -1,7 +1,8 @@
 """A graded elastic sphere on a graded elastic block: the time step follows
 the contact springs that act, and the force stays Hertz's.
 
-Sphere: the quarter ball of hertz_elastic_sphere (R = 0.05 m, E = 1e7 Pa,
+The scene is tests/contact/graded_sphere_on_block.prm. Sphere: the quarter
+ball of hertz_elastic_sphere (R = 0.05 m, E = 1e7 Pa,
 nu = 0.3, rho = 1000 kg/m^3, 12 x 12 x 24 elements graded towards its south
 pole, 1.7 mm there) at v = 0.2 m/s. Block: the same material, a quarter
 block 0.1 x 0.1 x 0.1 m below the pole, 13 elements a side graded from
@@ -33,9 +34,8 @@ smooth (no row-to-row change above 5 % of the peak), energy balance 1 %.
 """
 import math
 import os
-from anvil_test import (Checker, arguments, elastic_material, graded, lumped_masses,
-                        plane_condition, read_csv, run_anvil, write_ball,
-                        write_hexahedra, write_scene)
+from anvil_test import (Checker, arguments, ball_nodes, graded, lumped_masses, read_csv, run_anvil,
+                        test_scene)
 
 args = arguments()
 c = Checker("graded sphere on a graded block: Hertz, and the steps the springs need")
@@ -47,13 +47,14 @@ delta = (15 * m_ball * v * v / (16 * Es * math.sqrt(R))) ** 0.4
 F_max = 4 / 3 * Es * math.sqrt(R) * delta ** 1.5
 t_c = 2.9432 * delta / v
 
-ball, ball_shape = write_ball(os.path.join(args.work_dir, "ball.inp"), R, 12, 1.15)
+# The meshes of tests/contact/graded_sphere_on_block.prm, node by node, for
+# the bound of the worst pairing below.
+ball, ball_shape = ball_nodes(R, 12, 1.15)
 n, size = 13, 0.1
 s = [size * x for x in graded(n, 1.25)]
 gap = 1e-5
 block = [(x, y, -R - gap - z) for z in s for y in s for x in s]
 block_shape = (n, n, n)
-write_hexahedra(os.path.join(args.work_dir, "block.inp"), block, block_shape, "BLOCK")
 
 
 def segments(nodes, shape, selector):
@@ -107,46 +108,11 @@ w2_old = max(4 * stiffest_segment(block, block_faces) / min(m_ball_nodes),
              4 * stiffest_segment(ball, ball_faces) / min(m_block_nodes))
 
 
-conditions = (plane_condition("sym_x", "ball", "x") + plane_condition("sym_y", "ball", "y") +
-              plane_condition("sym_x_block", "block", "x") + plane_condition("sym_y_block", "block", "y") +
-              plane_condition("base", "block", "z", at=-R - gap - size, components="x, y, z"))
-
-
-material = elastic_material(rho, E, nu)
-
-
 def run(np, algorithm="penalty"):
     name = f"sphere_block_np{np}" + ("" if algorithm == "penalty" else "_" + algorithm)
-    contact = (f"  set Algorithm = penalty\n  set Penalty scale factor = {f}\n" if algorithm == "penalty" else
-               f"  set Algorithm = {algorithm}\n")
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=f"""
-# Elastic quarter sphere on an elastic quarter block (Hertz, two bodies).
-set Bodies = block, ball
-set Contact pairs = hit
-set Boundary conditions = sym_x, sym_y, sym_x_block, sym_y_block, base
-subsection Simulation
-  set End time = 0.014
-  set History interval = 2e-5
-  set Print wall times = false
-end
-subsection Body block
-  subsection Mesh
-    set Source = file
-    set File name = block.inp
-  end
-{material}end
-subsection Body ball
-  subsection Mesh
-    set Source = file
-    set File name = ball.inp
-  end
-{material}  set Initial velocity = 0, 0, {-v}
-end
-{conditions}subsection Contact pair hit
-  set First body = block
-  set Second body = ball
-{contact}end
-""")
+    contact = ({"Contact pair hit/Algorithm": "penalty", "Contact pair hit/Penalty scale factor": f}
+               if algorithm == "penalty" else {})
+    prm = test_scene(args, "tests/contact/graded_sphere_on_block.prm", name, contact)
     code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
     if not c.check_true(f"np = {np}: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()

@@ -4,10 +4,10 @@ enforcement (kinematic against a rigid body), at three speeds.
 
 Sphere: R = 0.05 m, E = 1e7 Pa, nu = 0.3, rho = 1000 kg/m^3 (m = 0.524 kg),
 meshed as a quarter ball (symmetry planes x = 0, y = 0) refined towards
-the south pole: a graded block [0,1]^2 x [-1,1] mapped onto the ball by
-p -> R p |p|_inf / |p|_2, 12 x 12 x 24 elements (1.7 mm at the pole),
-written as an ABAQUS .inp file. The plane is an exact analytic plane on a
-fixed rigid body.
+the south pole by the mesh source 'ball' (a graded block [0,1]^2 x [-1,1]
+mapped onto the ball by p -> R p |p|_inf / |p|_2), 12 x 12 x 24 elements
+(1.7 mm at the pole): tests/contact/hertz_elastic_sphere.prm. The plane is
+an exact analytic plane on a fixed rigid body.
 
 Closed form, E* = E / (1 - nu^2):
   delta_max = (15 m v^2 / (16 E* R^(1/2)))^(2/5),
@@ -28,8 +28,7 @@ its 2.1 mm contact radius (16 x 16 x 32, 0.36 mm), force and time within
 """
 import math
 import os
-from anvil_test import (Checker, arguments, check_hertz_speeds, hertz_ball_scene, read_csv,
-                        run_anvil, write_ball, write_scene)
+from anvil_test import Checker, arguments, check_hertz_speeds, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("Hertz: elastic sphere on a rigid plane")
@@ -43,15 +42,14 @@ def hertz(v):
     return 4 / 3 * Es * math.sqrt(R) * delta ** 1.5, 2.9432 * delta / v
 
 
-write_ball(os.path.join(args.work_dir, "ball.inp"), R, 12, 1.15)
+fine = {"Body ball/Mesh/Ball subdivisions": 16, "Body ball/Mesh/Ball grading": 1.25}
 
 
-def run(v, mesh="ball.inp", end=1.2):
-    name = f"{mesh[:-4]}_{v}"
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
-                      text=hertz_ball_scene(mesh, R, E, nu, rho, v, end_time=end * hertz(v)[1])
-                      + "subsection Simulation\n  set Print wall times = false\n"
-                      + f"  set History interval = {hertz(v)[1] / 1000}\nend\n")
+def run(v, ball=None, end=1.2):
+    name = f"{'fine_ball' if ball else 'ball'}_{v}"
+    prm = test_scene(args, "tests/contact/hertz_elastic_sphere.prm", name,
+                     {"Simulation/End time": end * hertz(v)[1], "Simulation/History interval": hertz(v)[1] / 1000,
+                      "Body ball/Initial velocity": f"0, 0, {-v}", **(ball or {})})
     code, out, err = run_anvil(args.anvil, prm, np=2, cwd=args.work_dir)
     if not c.check_true(f"{v} m/s: anvil exits 0", code == 0, err.strip()[-300:]):
         c.finish()
@@ -70,9 +68,8 @@ check_hertz_speeds(c, (0.1, 0.2, 0.4), hertz, run, 0.04)
 # 0.36 mm at the pole (16 x 16 x 32, ratio 1.25) so that about six
 # elements span it. Hertz's 3 %. (0.5 and 2 m/s, and the exponents 1.214
 # and -0.208, in doc/accuracy.md: three such runs cost 50 s.)
-write_ball(os.path.join(args.work_dir, "fine_ball.inp"), R, 16, 1.25)
 F_max, t_c = hertz(0.02)
-peak, duration, balance = run(0.02, "fine_ball.inp", 1.08)
+peak, duration, balance = run(0.02, fine, 1.08)
 print(f"  0.02 m/s, fine ball: Hertz {F_max:.4f} N, {1000 * t_c:.3f} ms; Anvil {peak:.4f} N "
       f"({peak / F_max - 1:+.4f}), {1000 * duration:.3f} ms ({duration / t_c - 1:+.4f})")
 c.check("steel's v / c at 1 m/s (0.02 m/s), 16 x 16 x 32 ball: peak force [N]", peak, F_max, 0.03, relative=True)

@@ -7,7 +7,11 @@ the meshes and reports the elements, against the count by hand:
   256; the roller ('cylinder'): a disk of 5 cells refined once in its
   section (20) times 4 along the axis: 80; the slab ('box'): 16; in all 352;
 - 'Global refinements = 1' on the roller: its section refined twice (80)
-  and its axis halved (8): 640, in all 912.
+  and its axis halved (8): 640, in all 912;
+- the graded 'ball' in the sphere's place, a quarter and whole: n x n x 2n
+  and 2n x 2n x 2n elements, its volume below the sphere's by less than
+  1 % (bilinear faces with their corners on the sphere lie inside it), the
+  quarter's a quarter of the whole's.
 An entry that belongs to another source ('Region' on the box, 'Section
 refinements' on the sphere, 'Subdivisions' on the cylinder, 'Length' on the
 box) is ignored, and a warning names it and the source it belongs to (a
@@ -17,8 +21,9 @@ so they are no error). Errors, one line each and exit 2:
   naming 'Global refinements';
 - an unknown source lists the ones there are.
 """
+import math
 import os
-from anvil_test import Checker, arguments, run_anvil, test_scene
+from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene
 
 args = arguments()
 c = Checker("mesh sources: elements made, entries of other sources, bad input")
@@ -40,6 +45,30 @@ c.check_true("the scene is valid", code == 0, err[-300:])
 c.check("elements: 32 x 8 (ball) + 5 x 4 x 4 (roller) + 16 (slab)", n, 32 * 8 + 5 * 4 * 4 + 16, 0)
 code, n, err = check("roller_refined", {"Body roller/Mesh/Global refinements": 1})
 c.check("roller refined once more: 32 x 8 + 5 x 16 x 8 + 16", n, 32 * 8 + 5 * 16 * 8 + 16, 0)
+
+# The graded 'ball' in place of the sphere (8 elements along a radius,
+# refined once): n x n x 2n for a quarter, 2n x 2n x 2n for the whole; its
+# volume below that of the sphere (its faces are bilinear patches with
+# their corners on it, inside it) by less than 1 %, the quarter a quarter
+# of the whole.
+volumes = {}
+for part, cells in (("quarter", 2 * 8 ** 3), ("full", 8 * 8 ** 3)):
+    ball = {"Body ball/Mesh/Source": "ball", "Body ball/Mesh/Ball part": part, "Body ball/Mesh/Ball subdivisions": 8,
+            "Body ball/Mesh/Ball grading": 1.15}
+    prm = test_scene(args, scene, f"ball_{part}", {**ball, "Simulation/End time": 1e-7})
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+    if not c.check_true(f"ball, {part}: runs", code == 0, err[-300:]):
+        continue
+    b = read_csv(os.path.join(args.work_dir, "output", f"ball_{part}", "bodies.csv"))
+    i = b["body"].index("ball")
+    c.check(f"ball, {part}: elements, {cells} x 8", b["elements"][i], cells * 8, 0)
+    volumes[part] = b["reference_volume"][i]
+sphere = 4 / 3 * math.pi * 0.1 ** 3
+if len(volumes) == 2:
+    deficit = 1 - volumes["full"] / sphere
+    print(f"  ball: volume {volumes['full']:.6g} m^3 against the sphere's {sphere:.6g} m^3 ({-100 * deficit:+.3f} %)")
+    c.check_true("ball: its volume below the sphere's by less than 1 %", 0 < deficit < 0.01, f"{deficit:.4g}")
+    c.check("ball: the quarter's volume / a quarter of the whole", volumes["quarter"] / (volumes["full"] / 4), 1.0, 1e-9)
 
 for name, overrides, words in (
         ("region_on_box", {"Body slab/Mesh/Region": "PART-1"},
