@@ -27,7 +27,8 @@ namespace anvil::MeshSources
     {
       using namespace dealii;
       prm.declare_entry("File name", "", Patterns::Anything(),
-                        "File: mesh file (.msh or .inp), relative to the scene file's directory.");
+                        "File: mesh file (.msh or .inp), relative to the folder of the scene file that "
+                        "names it (an included scene's own folder).");
       prm.declare_entry("Region", "", Patterns::Anything(),
                         "File: the cells this body takes, as a comma-separated list of names the file "
                         "gives to groups of cells (ABAQUS: instances, parts, element sets, "

@@ -57,7 +57,7 @@ namespace anvil::Rebar
                       "Stirrups: spacing along the axis. Units: m.");
     prm.declare_entry("File name", "", Patterns::Anything(),
                       "Polylines: a text file of 'x y z' lines, polylines "
-                      "separated by blank lines (relative to the scene file).");
+                      "separated by blank lines (relative to the folder of the scene file that names it).");
     prm.declare_entry("Element length", "0.05", Patterns::Double(0.),
                       "Largest truss element length. Units: m.");
     prm.declare_entry("Probe point", "", Patterns::Anything(),

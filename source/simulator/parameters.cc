@@ -53,7 +53,7 @@ namespace anvil
                         "",
                         Patterns::List(Patterns::Anything()),
                         "Plugins to load before the scene is read: shared libraries "
-                        "(relative to the scene file) whose material models register "
+                        "(relative to the folder of the scene file that names them) whose plugins register "
                         "themselves like Anvil's own (doc/extending.md).");
       prm.declare_entry("Bodies",
                         "body",
@@ -105,6 +105,43 @@ namespace anvil
       std::vector<std::pair<std::string, int>>  origin;
     };
 
+    /**
+     * A file an included scene names ('File name', 'Additional shared
+     * libraries') is where that scene says, relative to its own folder,
+     * wherever the scene that includes it lies: a relative path in such a
+     * line of an included file becomes that folder's path. (The top file's
+     * are relative to its folder already.)
+     */
+    std::string anchor_file_names(const std::string &line, const std::filesystem::path &folder)
+    {
+      const auto first = line.find_first_not_of(" \t");
+      const auto eq    = line.find('=');
+      if (first == std::string::npos || line.compare(first, 4, "set ") != 0 || eq == std::string::npos)
+        return line;
+      const std::string entry = dealii::Utilities::trim(line.substr(first + 4, eq - first - 4));
+      if (entry != "File name" && entry != "Additional shared libraries")
+        return line;
+      std::string value   = line.substr(eq + 1);
+      std::string comment;
+      if (const auto hash = value.find('#'); hash != std::string::npos)
+        {
+          comment = value.substr(hash);
+          value.erase(hash);
+        }
+      std::string anchored;
+      for (const std::string &item : dealii::Utilities::split_string_list(value, ','))
+        {
+          const std::string name = dealii::Utilities::trim(item);
+          if (name.empty())
+            continue;
+          const std::filesystem::path path(name);
+          anchored += (anchored.empty() ? "" : ", ") +
+                      (path.is_relative() ? std::filesystem::absolute(folder / path).lexically_normal().string() : name);
+        }
+      return line.substr(0, eq + 1) + " " + anchored + (comment.empty() ? "" : " " + comment);
+    }
+
+
     void expand(const std::filesystem::path &file,
                 std::vector<std::string>    &stack,
                 ExpandedScene               &scene)
@@ -146,6 +183,8 @@ namespace anvil
               expand(target, stack, scene);
               continue;
             }
+          if (stack.size() > 1)
+            line = anchor_file_names(line, file.parent_path());
           scene.text += line;
           scene.text += '\n';
           scene.origin.emplace_back(file.string(), number);

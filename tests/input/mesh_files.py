@@ -2,71 +2,24 @@
 and the built-in cylinder, checked by a conservation law: a free body
 thrown at v0 carries momentum rho V v0 exactly, with V the volume of the
 geometry (a 2 x 1 x 1 m block from the files; the cylinder's regular
-n-gon section times its length, for section and global refinements).
+n-gon section times its length, for section and global refinements). The
+scene is tests/input/mesh_files.prm, on block_mm.inp and block_mm.msh.
 Also exercises a box-selected boundary condition (exit status and its
 constrained momentum)."""
 import math
 import os
-from anvil_test import Checker, arguments, run_anvil, write_scene, read_csv
+from anvil_test import Checker, arguments, run_anvil, test_scene, read_csv
 
 args = arguments()
 c = Checker("mesh files, cylinder generator, box-selected boundary condition")
 
-# Nodes of a 2 x 1 x 1 block (in mm), two hexahedra, corner ordering of
-# ABAQUS C3D8 and Gmsh hexahedra (bottom face counter-clockwise, then top).
-nodes = []
-for z in (0, 1000):
-    for y in (0, 1000):
-        for x in (0, 1000, 2000):
-            nodes.append((x, y, z))
-def nid(i, j, k):
-    return 1 + i + 3 * j + 6 * k
-hexes = [[nid(i, 0, 0), nid(i + 1, 0, 0), nid(i + 1, 1, 0), nid(i, 1, 0),
-          nid(i, 0, 1), nid(i + 1, 0, 1), nid(i + 1, 1, 1), nid(i, 1, 1)] for i in (0, 1)]
-
-inp = os.path.join(args.work_dir, "block.inp")
-with open(inp, "w") as f:
-    f.write("*Heading\n*Node\n")
-    for k, p in enumerate(nodes):
-        f.write(f"{k + 1}, {p[0]}, {p[1]}, {p[2]}\n")
-    f.write("*Element, type=C3D8R\n")
-    for k, h in enumerate(hexes):
-        f.write(f"{k + 1}, " + ", ".join(map(str, h)) + "\n")
-msh = os.path.join(args.work_dir, "block.msh")
-with open(msh, "w") as f:
-    f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(nodes))
-    for k, p in enumerate(nodes):
-        f.write(f"{k + 1} {p[0]} {p[1]} {p[2]}\n")
-    f.write("$EndNodes\n$Elements\n%d\n" % len(hexes))
-    for k, h in enumerate(hexes):
-        f.write(f"{k + 1} 5 2 0 1 " + " ".join(map(str, h)) + "\n")
-    f.write("$EndElements\n")
-
+scene = "tests/input/mesh_files.prm"
 rho, v0 = 7850.0, 3.0
-def scene(mesh, extra=""):
-    return f"""
-set Bodies = b
-subsection Simulation
-  set End time = 1e-4
-  set Print wall times = false
-end
-subsection Body b
-  subsection Mesh
-{mesh}
-  end
-  subsection Material
-    subsection elastic
-      set Density = {rho}
-    end
-  end
-  set Initial velocity = {v0}, 0, 0
-end
-{extra}
-"""
-
-for name, mesh in (("inp", f"    set Source = file\n    set File name = block.inp\n    set Scale = 0.001"),
-                   ("msh", f"    set Source = file\n    set File name = block.msh\n    set Scale = 0.001")):
-    prm = write_scene(os.path.join(args.work_dir, f"file_{name}.prm"), text=scene(mesh))
+for name in ("inp", "msh"):
+    # The .inp is the scene's own (named relative to it, through the
+    # include); the .msh named here, in the including file.
+    msh = os.path.join(os.path.abspath(args.source_dir), "tests", "input", "block_mm.msh")
+    prm = test_scene(args, scene, f"file_{name}", {"Body b/Mesh/File name": msh} if name == "msh" else {})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if c.check_true(f".{name}: runs", code == 0, err.strip()):
         p = read_csv(os.path.join(args.work_dir, f"output/file_{name}/momentum.csv"))
@@ -79,10 +32,11 @@ for name, mesh in (("inp", f"    set Source = file\n    set File name = block.in
 r, length = 0.1, 0.5
 for section, refinements in ((0, 2), (2, 0), (1, 1), (2, 1)):
     n = 4 * 2 ** (section + refinements)
-    mesh = (f"    set Source = cylinder\n    set Radius = {r}\n    set Length = {length}\n"
-            f"    set Section refinements = {section}\n    set Global refinements = {refinements}")
     run = f"cylinder_s{section}_g{refinements}"
-    prm = write_scene(os.path.join(args.work_dir, run + ".prm"), text=scene(mesh))
+    prm = test_scene(args, scene, run, {"Body b/Mesh/Source": "cylinder", "Body b/Mesh/File name": "",
+                                        "Body b/Mesh/Scale": 1, "Body b/Mesh/Radius": r, "Body b/Mesh/Length": length,
+                                        "Body b/Mesh/Section refinements": section,
+                                        "Body b/Mesh/Global refinements": refinements})
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
     if c.check_true(f"cylinder, {section} section and {refinements} global refinements: runs",
                     code == 0, err.strip()):
@@ -98,7 +52,6 @@ for section, refinements in ((0, 2), (2, 0), (1, 1), (2, 1)):
 # Box selection: hold the x-velocity of the nodes on the block's x = 0 face
 # (a box around it). Of a 2 x 2 x 2 mesh, the x = 0 face carries a quarter
 # of the lumped mass, so the initial x-momentum is 3/4 of rho V v0.
-mesh = "    set Upper corner = 1, 1, 1\n    set Subdivisions = 2, 2, 2"
 extra = """set Boundary conditions = hold
 subsection Boundary condition hold
   set Body = b
@@ -106,8 +59,11 @@ subsection Boundary condition hold
   set Box lower corner = -0.1, -0.1, -0.1
   set Box upper corner = 0.1, 1.1, 1.1
   set Components = x
-end"""
-prm = write_scene(os.path.join(args.work_dir, "box_bc.prm"), text=scene(mesh, extra))
+end
+"""
+prm = test_scene(args, scene, "box_bc", {"Body b/Mesh/Source": "box", "Body b/Mesh/File name": "",
+                                         "Body b/Mesh/Scale": 1, "Body b/Mesh/Upper corner": "1, 1, 1",
+                                         "Body b/Mesh/Subdivisions": "2, 2, 2"}, extra)
 code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
 if c.check_true("box-selected condition: runs", code == 0, err.strip()):
     p = read_csv(os.path.join(args.work_dir, "output/box_bc/momentum.csv"))
