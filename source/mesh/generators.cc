@@ -19,6 +19,28 @@ namespace anvil::MeshSources
 {
   namespace
   {
+    /** The largest ratio of element sizes that m elements, each r times
+        the one before, may span: beyond it the smallest would set a step
+        a million times too small, or have no volume at all. */
+    constexpr double largest_size_ratio = 1e6;
+
+    /** An InputError naming @p entry unless m elements graded by r stay
+        within largest_size_ratio. */
+    void check_grading(const std::string &where, const std::string &entry, const double r, const unsigned int m)
+    {
+      const double span = std::pow(std::max(r, 1. / r), double(m) - 1.);
+      if (!(span <= largest_size_ratio))
+        {
+          std::ostringstream s;
+          s.precision(3);
+          s << where << ": '" << entry << "' = " << r << " over " << m << " elements makes the largest "
+            << span << " times the smallest; at most " << largest_size_ratio
+            << " (the smallest element sets the time step)";
+          throw InputError(s.str());
+        }
+    }
+
+
     void declare_radius(dealii::ParameterHandler &prm)
     {
       prm.declare_entry("Radius", "0.5", dealii::Patterns::Double(0.), "Cylinder, sphere and ball: radius. Units: m.");
@@ -63,6 +85,8 @@ namespace anvil::MeshSources
       for (unsigned int d = 0; d < 3; ++d)
         if (!(upper[d] > lower[d]))
           throw InputError(context.where + ": 'Upper corner' must exceed 'Lower corner' in every component");
+      for (unsigned int d = 0; d < 3; ++d)
+        check_grading(context.where, "Grading", grading[d], subdivisions[d]);
     }
 
     void create(dealii::Triangulation<3> &tria, const unsigned int refinements, MeshNames *) const override
@@ -238,6 +262,8 @@ namespace anvil::MeshSources
         throw InputError(context.where + ": the ball needs a positive 'Radius'");
       if (!(grading > 0))
         throw InputError(context.where + ": 'Ball grading' must be positive");
+      check_grading(context.where, "Ball grading", grading, n);
+      check_grading(context.where, "Ball grading", std::sqrt(grading), 2 * n);
     }
 
     void create(dealii::Triangulation<3> &tria, const unsigned int refinements, MeshNames *) const override

@@ -19,6 +19,10 @@ scene that includes another and switches the source inherits such entries,
 so they are no error). Errors, one line each and exit 2:
 - a ball refined 8 times (32 x 8^8 elements) does not fit and says so,
   naming 'Global refinements';
+- a grading whose elements would span more than a factor 10^6 in size (a
+  box's 'Grading' 10 over 40 elements, a ball's 3 over 40) is refused: the
+  smallest element would set the step, or have no volume at all (it
+  stopped with "a node has no mass" and MPI_ABORT);
 - an unknown source lists the ones there are.
 """
 import math
@@ -87,6 +91,10 @@ for name, overrides, words in (
 
 for name, overrides, words in (
         ("ball_too_fine", {"Body ball/Mesh/Global refinements": 8}, ("'Global refinements'", "Body ball/Mesh")),
+        ("box_overgraded", {"Body slab/Mesh/Subdivisions": "40, 4, 1", "Body slab/Mesh/Grading": "10, 1, 1"},
+         ("'Grading'", "40 elements", "1e+39", "Body slab/Mesh")),
+        ("ball_overgraded", {"Body ball/Mesh/Source": "ball", "Body ball/Mesh/Ball subdivisions": 40,
+                             "Body ball/Mesh/Ball grading": 3}, ("'Ball grading'", "40 elements", "Body ball/Mesh")),
         ("unknown_source", {"Body ball/Mesh/Source": "tube"}, ("Source", "box", "cylinder", "file", "sphere"))):
     code, n, err = check(name, overrides)
     c.check_true(f"{name}: exit 2 with one line naming {', '.join(words)}",
