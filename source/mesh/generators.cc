@@ -41,6 +41,23 @@ namespace anvil::MeshSources
     }
 
 
+    /** @p m element sizes in geometric progression, each @p r times the
+        one before, that fill @p extent. */
+    std::vector<double> graded_sizes(const unsigned int m, const double r, const double extent)
+    {
+      std::vector<double> h;
+      double              size = 1, total = 0;
+      for (unsigned int i = 0; i < m; ++i, size *= r)
+        {
+          h.push_back(size);
+          total += size;
+        }
+      for (double &x : h)
+        x *= extent / total;
+      return h;
+    }
+
+
     void declare_radius(dealii::ParameterHandler &prm)
     {
       prm.declare_entry("Radius", "0.5", dealii::Patterns::Double(0.), "Cylinder, sphere and ball: radius. Units: m.");
@@ -94,16 +111,7 @@ namespace anvil::MeshSources
       // Element sizes in geometric progression along each axis.
       std::vector<std::vector<double>> steps(3);
       for (unsigned int d = 0; d < 3; ++d)
-        {
-          double size = 1, total = 0;
-          for (unsigned int i = 0; i < subdivisions[d]; ++i, size *= grading[d])
-            {
-              steps[d].push_back(size);
-              total += size;
-            }
-          for (auto &h : steps[d])
-            h *= (upper[d] - lower[d]) / total;
-        }
+        steps[d] = graded_sizes(subdivisions[d], grading[d], upper[d] - lower[d]);
       dealii::GridGenerator::subdivided_hyper_rectangle(tria, steps, lower, upper, /*colorize=*/true);
       tria.refine_global(refinements);
     }
@@ -269,23 +277,13 @@ namespace anvil::MeshSources
     void create(dealii::Triangulation<3> &tria, const unsigned int refinements, MeshNames *) const override
     {
       using namespace dealii;
-      // Sizes r^i, i = 0 .. m-1, scaled to fill [0, 1].
-      const auto graded = [](const unsigned int m, const double r) {
-        std::vector<double> h(m);
-        double              total = 0;
-        for (unsigned int i = 0; i < m; ++i)
-          total += (h[i] = std::pow(r, double(i)));
-        for (double &x : h)
-          x /= total;
-        return h;
-      };
-      const std::vector<double> out = graded(n, grading);
+      // Across the axis from it outwards (mirrored for the whole ball);
+      // along it from the south pole.
+      const std::vector<double> out = graded_sizes(n, grading, 1.);
       std::vector<double>       across(out);
       if (!quarter)
         across.insert(across.begin(), out.rbegin(), out.rend());
-      std::vector<double> along = graded(2 * n, std::sqrt(grading));
-      for (double &h : along)
-        h *= 2.;
+      const std::vector<double> along = graded_sizes(2 * n, std::sqrt(grading), 2.);
       const double lo = quarter ? 0. : -1.;
       GridGenerator::subdivided_hyper_rectangle(tria, {across, across, along}, Point<3>(lo, lo, -1.),
                                                 Point<3>(1., 1., 1.), /*colorize=*/false);
