@@ -51,7 +51,7 @@ namespace anvil::MeshSources
         if (!r.empty())
           region.push_back(MeshFile::key(r));
       scale = prm.get_double("Scale");
-      if (dealii::Utilities::trim(prm.get("File name")).empty())
+      if (file_name.empty())
         throw InputError(where + ": 'Source = file' needs 'File name'");
       if (!std::ifstream(file_name))
         throw InputError(where + ": mesh file '" + file_name + "' cannot be opened");
@@ -61,7 +61,7 @@ namespace anvil::MeshSources
     // mesh, with the file's surfaces as boundary ids on their faces that
     // lie on its boundary.
     void create(dealii::Triangulation<3> &tria, const unsigned int refinements, MeshNames *names) const override
-  {
+    {
       using namespace dealii;
       const MeshFile::Contents file  = MeshFile::read(file_name);
       const std::string        where = this->where + ": ";
