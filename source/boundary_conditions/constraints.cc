@@ -287,6 +287,33 @@ namespace anvil
   {
     // (The prescribed velocities are the scene's, not state: a new stage
     // may change them.)
-    ar &peak_reaction &damping_force_old &constrained_reaction &constrained_velocity_old &bc_reaction;
+    ar &peak_reaction &bc_reaction;
+    // By dof key: each held dof's reaction and velocity of the last step,
+    // and with mass damping each owned dof's damping force.
+    const auto &key = get_dof_keys();
+    std::vector<std::uint64_t> held_keys;
+    for (const unsigned int i : constrained_dofs)
+      held_keys.push_back(key[i]);
+    std::vector<double> held(ar.is_loading() ? 0 : 2 * held_keys.size());
+    for (unsigned int k = 0; k < held.size() / 2; ++k)
+      {
+        held[2 * k]     = constrained_reaction[k];
+        held[2 * k + 1] = constrained_velocity_old[k];
+      }
+    // (A stage may hold dofs the run before it did not: they start
+    // without a reaction, as at setup.)
+    ar.keyed("held dofs", held_keys, 2, held, true);
+    if (ar.is_loading())
+      for (unsigned int k = 0; k < held_keys.size(); ++k)
+        {
+          constrained_reaction[k]     = held[2 * k];
+          constrained_velocity_old[k] = held[2 * k + 1];
+        }
+    if (mass_damping > 0)
+      {
+        if (damping_force_old.size() != key.size())
+          damping_force_old.assign(key.size(), 0.);
+        ar.keyed("damping", key, 1, damping_force_old, true);
+      }
   }
 } // namespace anvil

@@ -123,10 +123,14 @@ namespace anvil::Contact
         const auto &partitioner = *position.get_partitioner();
         place_analytic_shapes(p);
         distributed[p] = pairs[p]->distribute(mpi_communicator, dof_handler.locally_owned_dofs());
+        pairs[p]->own_nodes.clear();
         for (unsigned int i = 0; i < dofs.size(); ++i)
           {
             if (partitioner.in_local_range(dofs[i]))
-              owned_index[p].emplace_back(i, partitioner.global_to_local(dofs[i]));
+              {
+                owned_index[p].emplace_back(i, partitioner.global_to_local(dofs[i]));
+                pairs[p]->own_nodes.push_back(i);
+              }
             if (distributed[p] && (partitioner.in_local_range(dofs[i]) || partitioner.is_ghost_entry(dofs[i])))
               relevant_index[p].emplace_back(i, partitioner.global_to_local(dofs[i]));
           }
@@ -519,11 +523,56 @@ namespace anvil::Contact
   }
 
 
+  // The pairs' figures are every rank's alike; the positions, velocities
+  // and forces of a pair's nodes (the last evaluation's) are each node's
+  // owner's, by the node's index in the pair; then each pair's algorithm,
+  // its tables under the pair's name.
   void ContactPairs::serialize(StateArchive &ar)
   {
-    ar &contact_frequency_squared &contact_results &positions &velocities &forces &springs_across_partitions
-      &run_maxima &approach;
-    for (auto &c : pairs)
-      c->serialize(ar);
+    ar &contact_frequency_squared &contact_results &springs_across_partitions &run_maxima &approach;
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        const unsigned int n_nodes = pairs[p]->node_dofs().size();
+        std::vector<std::vector<double> *> arrays;
+        for (auto *a : {&positions[p], &velocities[p], &forces[p]})
+          if (a->size() == 3 * n_nodes && n_nodes > 0)
+            arrays.push_back(a);
+        const unsigned int         record = 3 * arrays.size();
+        std::vector<std::uint64_t> keys;
+        if (ar.is_loading())
+          for (unsigned int i = 0; i < n_nodes; ++i)
+            keys.push_back(i);
+        else
+          keys = pairs[p]->own_nodes;
+        std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
+        if (!ar.is_loading())
+          for (std::size_t k = 0; k < keys.size(); ++k)
+            for (unsigned int a = 0; a < arrays.size(); ++a)
+              for (unsigned int d = 0; d < 3; ++d)
+                values[record * k + 3 * a + d] = (*arrays[a])[3 * keys[k] + d];
+        const std::string table = "pair '" + pairs[p]->name + "'";
+        ar.keyed(table, keys, record, values);
+        if (ar.is_loading())
+          for (std::size_t k = 0; k < keys.size(); ++k)
+            for (unsigned int a = 0; a < arrays.size(); ++a)
+              for (unsigned int d = 0; d < 3; ++d)
+                (*arrays[a])[3 * keys[k] + d] = values[record * k + 3 * a + d];
+        std::string stream;
+        if (!ar.is_loading())
+          {
+            StateArchive own = ar.nested(table);
+            pairs[p]->serialize(own);
+            stream = own.data();
+          }
+        ar &stream;
+        if (ar.is_loading())
+          {
+            StateArchive own = ar.nested(table, stream);
+            pairs[p]->serialize(own);
+            if (!own.exhausted())
+              throw std::runtime_error("the state of contact pair '" + pairs[p]->name +
+                                       "' is longer than this build's");
+          }
+      }
   }
 } // namespace anvil::Contact

@@ -218,16 +218,65 @@ namespace anvil::Contact
   };
 
 
+  // The surfaces' segments (erosion) and the work are every rank's alike;
+  // each node's springs, partners, friction and gradient forces are its
+  // owner's, by the node's index in the pair.
   void PenaltyContact::serialize(StateArchive &ar)
   {
     for (auto &surf : surface)
       ar &surf.active;
-    ar &tangential_force[0] &tangential_force[1] &previous_tangential_force;
-    ar &partner[0] &partner[1] &spring_force[0] &spring_force[1] &spring_depth[0] &spring_depth[1]
-      &spring_work &geometric_force[0] &geometric_force[1] &previous_position;
-    // The analytic pass's lists of the nodes with a spring or a gradient
-    // force; its old values are made anew from these at the next step.
-    ar &springs_now &gradients_now;
+    ar &spring_work;
+    std::uint64_t n_previous = previous_position.size();
+    ar &n_previous;
+    const unsigned int n_nodes    = dofs.size();
+    const bool         friction   = !tangential_force[0].empty();
+    const unsigned int record     = 2 * (6 + (friction ? 3 : 0)) + (n_previous > 0 ? 3 : 0);
+    std::vector<std::uint64_t> keys;
+    if (ar.is_loading())
+      {
+        previous_position.assign(n_previous, 0.);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          keys.push_back(i);
+      }
+    else
+      keys = own_nodes;
+    std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
+    const auto transfer = [&](const unsigned int i, double *at, const bool save) {
+      RecordCursor io(at, save);
+      for (unsigned int s = 0; s < 2; ++s)
+        {
+          io(partner[s][i]);
+          io(spring_force[s][i]);
+          io(spring_depth[s][i]);
+          io(geometric_force[s], 3 * i, 3);
+          if (friction)
+            io(tangential_force[s], 3 * i, 3);
+        }
+      if (n_previous > 0)
+        io(previous_position, 3 * i, 3);
+    };
+    if (!ar.is_loading())
+      for (std::size_t k = 0; k < keys.size(); ++k)
+        transfer(keys[k], values.data() + record * k, true);
+    ar.keyed("nodes", keys, record, values);
+    if (ar.is_loading())
+      for (std::size_t k = 0; k < keys.size(); ++k)
+        transfer(keys[k], values.data() + record * k, false);
+    // The analytic pass's lists of the own nodes with a spring or a
+    // gradient force (its old values are made anew from these at the
+    // next step): every rank's joined, each rank taking its own.
+    for (auto [list, table] : {std::make_pair(&springs_now, "springs"), std::make_pair(&gradients_now, "gradients")})
+      {
+        std::vector<std::uint64_t> joined(list->begin(), list->end());
+        ar.key_union(table, joined);
+        if (ar.is_loading())
+          {
+            list->clear();
+            for (const auto i : joined)
+              if (owned.empty() || owned[i])
+                list->push_back(i);
+          }
+      }
     if (ar.is_loading())
       {
         springs_before.clear();

@@ -567,6 +567,62 @@ namespace anvil::Element
   }
 
 
+  // An element's state as one record of doubles: whether it is intact,
+  // its points' stresses and histories, its hourglass state, its energies,
+  // its points' bulk viscosity pressures and its shape factor (the arrays
+  // a group of its kind has).
+  void ElementGroup::serialize(StateArchive &ar, const std::string &table)
+  {
+    ar &n_calls &refresh_shape;
+    // (By the group's kind, not by its arrays, which are empty on a process
+    // without elements of the group.)
+    const bool         erodes      = material.erodes();
+    const bool         modes       = hourglass == HourglassType::stiffness;
+    const bool         resistance  = hourglass != HourglassType::none;
+    const unsigned int record      = (erodes ? 1 : 0) + (6 + n_hist) * n_qp + (modes ? 12 : 0) +
+                                (resistance ? 12 : 0) + 2 + (bulk_viscosity() ? n_qp : 0) + 1;
+    std::vector<std::uint64_t> keys;
+    std::vector<unsigned int>  elements;
+    for (unsigned int e = 0; e < n_elements(); ++e)
+      if (ar.is_loading() || element_is_owned(e))
+        {
+          keys.push_back(global_id[e]);
+          elements.push_back(e);
+        }
+    std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
+    // Element e's record from (save) or into (load) values, from @p at.
+    const auto transfer = [&](const unsigned int e, double *at, const bool save) {
+      RecordCursor io(at, save);
+      if (erodes)
+        io(alive[e]);
+      for (unsigned int q = 0; q < n_qp; ++q)
+        {
+          const std::size_t p = std::size_t(e) * n_qp + q;
+          io(stresses, 6 * p, 6);
+          for (unsigned int k = 0; k < n_hot; ++k)
+            io(history[hot_entry(p, k)]);
+          io(cold_history, n_cold * p, n_cold);
+        }
+      for (auto *v : {modes ? &hourglass_modes : nullptr, resistance ? &hourglass_resistance : nullptr})
+        if (v != nullptr)
+          for (unsigned int k = 0; k < 12; ++k)
+            io((*v)[hourglass_entry(e, k)]);
+      io(internal_energy[e]);
+      io(hourglass_energy[e]);
+      if (bulk_viscosity())
+        io(bulk_pressure, std::size_t(e) * n_qp, n_qp);
+      io(shape_factor[e]);
+    };
+    if (!ar.is_loading())
+      for (std::size_t i = 0; i < elements.size(); ++i)
+        transfer(elements[i], values.data() + record * i, true);
+    ar.keyed(table, keys, record, values);
+    if (ar.is_loading())
+      for (std::size_t i = 0; i < elements.size(); ++i)
+        transfer(elements[i], values.data() + record * i, false);
+  }
+
+
   void ElementGroup::set_nodal_mass_ratio(const double *ratio)
   {
     for (unsigned int e = 0; e < mass_factor.size(); ++e)

@@ -303,8 +303,10 @@ namespace anvil::Element
 
   void SolidBodies::serialize(StateArchive &ar)
   {
+    // (The erosion rows not yet written are rank 0's, whose stream a
+    // resumed run reads.)
     ar &first_inverted_cell &eroded_so_far &rows;
-    for (auto &g : element_groups)
-      g.serialize(ar);
+    for (unsigned int g = 0; g < element_groups.size(); ++g)
+      element_groups[g].serialize(ar, "group " + std::to_string(g));
   }
 } // namespace anvil::Element

@@ -264,4 +264,94 @@ namespace anvil::Rebar
       s << polylines().size() << " polylines of " << 1000 * diameter << " mm";
     return s.str();
   }
+
+
+  void Trusses::serialize(StateArchive &ar, const std::string &table)
+  {
+    ar &pvd_records &substeps &substep;
+    // The per-node arrays the layout has (some are made at the first
+    // evaluation): their sizes are the stream's, their values the
+    // tables'.
+    std::vector<double> *const per_node[] = {&x, &xs, &vs, &fs, &xh, &plastic_slip, &damage, &bond_stress,
+                                             &slip, &bond_force, &pull_reaction, &nodal_force, &x_bond_old};
+    std::vector<double> *const per_element[] = {&length, &stress, &force, &energy, &history};
+    const std::size_t          n_nodes = X.size(), n_elements = elements.size();
+    std::vector<std::uint64_t> sizes;
+    for (auto *v : per_node)
+      sizes.push_back(v->size());
+    for (auto *v : per_element)
+      sizes.push_back(v->size());
+    sizes.push_back(pulled.size());
+    sizes.push_back(tangent.size());
+    ar &sizes;
+    if (ar.is_loading())
+      {
+        unsigned int k = 0;
+        for (auto *v : per_node)
+          v->assign(sizes[k++], 0.);
+        for (auto *v : per_element)
+          v->assign(sizes[k++], 0.);
+        pulled.assign(sizes[k++], false);
+        tangent.assign(sizes[k++], dealii::Tensor<1, 3>());
+      }
+    // Values an item of an array of @p size over @p n items (0: absent).
+    const auto width = [](const std::size_t size, const std::size_t n) {
+      return n > 0 ? static_cast<unsigned int>(size / n) : 0u;
+    };
+    unsigned int node_record = (pulled.empty() ? 0 : 1) + (tangent.empty() ? 0 : 3);
+    for (auto *v : per_node)
+      node_record += width(v->size(), n_nodes);
+    unsigned int element_record = 0;
+    for (auto *v : per_element)
+      element_record += width(v->size(), n_elements);
+
+    const auto transfer_node = [&](const std::size_t i, double *at, const bool save) {
+      RecordCursor io(at, save);
+      for (auto *v : per_node)
+        {
+          const unsigned int w = width(v->size(), n_nodes);
+          io(*v, w * i, w);
+        }
+      if (!pulled.empty())
+        io(pulled, i, 1);
+      if (!tangent.empty())
+        for (unsigned int d = 0; d < 3; ++d)
+          io(tangent[i][d]);
+    };
+    const auto transfer_element = [&](const std::size_t k, double *at, const bool save) {
+      RecordCursor io(at, save);
+      for (auto *v : per_element)
+        {
+          const unsigned int w = width(v->size(), n_elements);
+          io(*v, w * k, w);
+        }
+    };
+    // Writing: the own nodes and the elements whose first node is own;
+    // reading: all of them (every process holds the arrays whole).
+    std::vector<std::uint64_t> nodes, own_elements;
+    for (std::size_t i = 0; i < n_nodes; ++i)
+      if (ar.is_loading() || (i < host_owned.size() && host_owned[i]))
+        nodes.push_back(i);
+    for (std::size_t k = 0; k < n_elements; ++k)
+      if (ar.is_loading() || host_owned[elements[k][0]])
+        own_elements.push_back(k);
+    std::vector<double> node_values(ar.is_loading() ? 0 : node_record * nodes.size());
+    std::vector<double> element_values(ar.is_loading() ? 0 : element_record * own_elements.size());
+    if (!ar.is_loading())
+      {
+        for (std::size_t j = 0; j < nodes.size(); ++j)
+          transfer_node(nodes[j], node_values.data() + node_record * j, true);
+        for (std::size_t j = 0; j < own_elements.size(); ++j)
+          transfer_element(own_elements[j], element_values.data() + element_record * j, true);
+      }
+    ar.keyed(table + " nodes", nodes, node_record, node_values);
+    ar.keyed(table + " elements", own_elements, element_record, element_values);
+    if (ar.is_loading())
+      {
+        for (std::size_t j = 0; j < nodes.size(); ++j)
+          transfer_node(nodes[j], node_values.data() + node_record * j, false);
+        for (std::size_t j = 0; j < own_elements.size(); ++j)
+          transfer_element(own_elements[j], element_values.data() + element_record * j, false);
+      }
+  }
 } // namespace anvil::Rebar

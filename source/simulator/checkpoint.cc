@@ -1,8 +1,9 @@
 /**
  * @file
- * Checkpoint and restart. The mesh, partition and every constant of the
- * scene are rebuilt from the scene file exactly as in the first run (same
- * number of processes); the checkpoint holds what the steps changed: nodal
+ * Checkpoint and restart. The mesh and every constant of the scene are
+ * rebuilt from the scene file as in the first run, on any number of
+ * processes; the checkpoint holds what the steps changed, each process's
+ * share by scene-wide keys (StateArchive::keyed()): nodal
  * state, element stresses and histories, hourglass state, contact history
  * and search trees, rigid bodies, bars, energies, the loop's schedule and
  * the lengths of the history files, which a resumed run cuts back to and
@@ -118,7 +119,24 @@ namespace anvil
   // by name (RecordMismatch) while the other records stay readable.
   void Simulator::serialize(StateArchive &ar)
   {
-    ar &position &velocity &force &mass &balance.good_position &balance.good_velocity &balance.good_time;
+    // The nodal state by dof key (the owned dofs of any partition).
+    {
+      VectorType *const   nodal[] = {&position, &velocity, &force, &mass, &balance.good_position,
+                                     &balance.good_velocity};
+      constexpr unsigned  n_nodal = std::size(nodal);
+      const unsigned int  n       = position.locally_owned_size();
+      std::vector<double> values(ar.is_loading() ? 0 : n_nodal * n);
+      if (!ar.is_loading())
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int k = 0; k < n_nodal; ++k)
+            values[n_nodal * i + k] = nodal[k]->local_element(i);
+      ar.keyed("nodes", dof_key, n_nodal, values);
+      if (ar.is_loading())
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int k = 0; k < n_nodal; ++k)
+            nodal[k]->local_element(i) = values[n_nodal * i + k];
+    }
+    ar &balance.good_time;
     ar &energies &balance.initial_energy &balance.balance_error &balance.energy_scale &critical_dt &balance.pending_step_change
       &balance.step_change_steps &current_dt &step_number &time &balance.growth_steps &balance.negative_steps &balance.first_dt &output.output_count
           &summary &loop;
@@ -141,7 +159,7 @@ namespace anvil
       {
         for (const auto &part : parts)
           {
-            StateArchive sub;
+            StateArchive sub = ar.nested(part.key);
             part.io(sub);
             records.push_back({part.key, part.version, sub.data()});
           }
@@ -158,7 +176,7 @@ namespace anvil
         if (record->version != part.version)
           throw RecordMismatch("its record of the " + part.key + " is version " + std::to_string(record->version) +
                                ", this build reads version " + std::to_string(part.version));
-        StateArchive sub(record->state);
+        StateArchive sub = ar.nested(part.key, record->state);
         part.io(sub);
         if (!sub.exhausted())
           throw RecordMismatch("its record of the " + part.key + " is longer than version " +
@@ -224,7 +242,7 @@ namespace anvil
     std::string failure;
     try
       {
-        write_atomically(dir + ".new/state." + std::to_string(rank) + ".bin", with_trailer(ar.data()));
+        write_atomically(dir + ".new/state." + std::to_string(rank) + ".bin", with_trailer(ar.file_data()));
       }
     catch (const OutputError &e)
       {
@@ -272,14 +290,14 @@ namespace anvil
   }
 
 
-  // The state is stored per process in the order of its elements and
-  // nodes: 'layout' names that order and what the state holds (1, unstated:
+  // 'layout' names how the state is laid out (1, unstated: per process,
   // element ids in p4est's tree order; 2: the scene's cell order, the fully
   // distributed mesh; 3: the run summary with every probe's figures; 6:
   // the penalty pairs' approach; 7: Johnson-Cook's thermal factor; 8: the
   // families and postprocessors in records keyed by name, each with its
-  // own version). A checkpoint of another layout would load its state
-  // wrongly.
+  // own version; 11: each process's share in keyed tables, so that any
+  // number of processes resumes it). A checkpoint of another layout would
+  // load its state wrongly.
   void Simulator::check_checkpoint(const std::string &dir) const
   {
     int n = -1, layout = 1;
@@ -299,31 +317,81 @@ namespace anvil
                        std::to_string(layout) + " (written by an earlier Anvil, whose state was laid " +
                        "out otherwise); this build reads layout " + std::to_string(checkpoint_layout) +
                        ": run the scene again from its start");
-    if (n != int(Utilities::MPI::n_mpi_processes(mpi_communicator)))
-      throw InputError(parameters.scene_file + ": --resume: the checkpoint in '" + dir + "' was written by " +
-                       std::to_string(n) + " process(es); resume it with mpirun -np " + std::to_string(n));
   }
 
 
+  // The number of processes that wrote the checkpoint in @p dir (its
+  // files state.0.bin ...).
+  unsigned int Simulator::checkpoint_processes(const std::string &dir) const
+  {
+    int           n = 0;
+    std::ifstream info(dir + "/info");
+    std::string   word;
+    info >> word >> n;
+    return std::max(n, 0);
+  }
+
+
+  // Every process reads every file of the checkpoint: the stream of the
+  // writers' first process (what all processes hold alike) and the keyed
+  // tables of all of them, merged, in which it finds the items of its own
+  // share, whatever the number of processes that wrote them.
   void Simulator::load_checkpoint(const std::string &directory, const bool new_stage)
   {
-    const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const std::string  file = directory + "/state." + std::to_string(rank) + ".bin";
-    std::ifstream      in(file, std::ios::binary);
-    std::ostringstream data;
-    data << in.rdbuf();
-    int bad = in ? 0 : 1;
-    if (Utilities::MPI::max(bad, mpi_communicator) != 0)
-      throw InputError(parameters.scene_file + ": --resume: cannot read " + file);
-    std::string       damage;
-    const std::string state = without_trailer(data.str(), damage);
-    if (Utilities::MPI::max(damage.empty() ? 0 : 1, mpi_communicator) != 0)
+    const unsigned int        rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int        writers = checkpoint_processes(directory);
+    std::string               stream, refused, damage;
+    std::vector<KeyedTables>  parts;
+    for (unsigned int w = 0; w < writers && refused.empty(); ++w)
+      {
+        const std::string  file = directory + "/state." + std::to_string(w) + ".bin";
+        std::ifstream      in(file, std::ios::binary);
+        std::ostringstream data;
+        data << in.rdbuf();
+        if (!in)
+          {
+            refused = file;
+            damage  = "it cannot be read";
+            break;
+          }
+        const std::string state = without_trailer(data.str(), damage);
+        if (!damage.empty())
+          {
+            refused = file;
+            break;
+          }
+        try
+          {
+            auto [own_stream, tables] = StateArchive::split_file_data(state);
+            if (w == 0)
+              stream = std::move(own_stream);
+            parts.push_back(std::move(tables));
+          }
+        catch (const std::exception &e)
+          {
+            refused = file;
+            damage  = e.what();
+          }
+      }
+    std::shared_ptr<const KeyedTables> merged;
+    if (refused.empty())
+      try
+        {
+          merged = StateArchive::merge(parts);
+        }
+      catch (const std::exception &e)
+        {
+          refused = directory;
+          damage  = e.what();
+        }
+    parts.clear();
+    if (Utilities::MPI::max(refused.empty() ? 0 : 1, mpi_communicator) != 0)
       throw InputError(parameters.scene_file + ": --resume: the checkpoint file " +
-                       (damage.empty() ? std::string("of another rank") : file) + " is refused: " +
-                       (damage.empty() ? std::string("it is damaged") : damage) +
+                       (refused.empty() ? std::string("of another rank") : refused) + " is refused: " +
+                       (refused.empty() ? std::string("it is damaged") : damage) +
                        " (run the scene again from its start, or from an intact checkpoint)");
 
-    StateArchive              ar(state);
+    StateArchive              ar(stream, merged);
     std::vector<unsigned int> counts;
     std::vector<long>         lengths;
     std::vector<std::string>  names;

@@ -342,6 +342,7 @@ namespace anvil
 
     dof_body.assign(position.locally_owned_size(), 0);
     dof_component.assign(position.locally_owned_size(), 0);
+    dof_key.assign(position.locally_owned_size(), 0);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (unsigned int v = 0; v < 8; ++v)
@@ -352,6 +353,7 @@ namespace anvil
                 {
                   dof_body[owned.index_within_set(dof)]      = cell->material_id();
                   dof_component[owned.index_within_set(dof)] = c;
+                  dof_key[owned.index_within_set(dof)]       = 3ul * scene_vertex[cell->vertex_index(v)] + c;
                 }
             }
   }

@@ -197,6 +197,11 @@ namespace anvil
     return simulator.dof_component;
   }
 
+  const std::vector<std::uint64_t> &SimulatorAccess::get_dof_keys() const
+  {
+    return simulator.dof_key;
+  }
+
   const std::vector<unsigned char> &SimulatorAccess::get_rigid_dof() const
   {
     return simulator.rigid_dof;

@@ -9,7 +9,14 @@ supports: every kind of state Anvil carries), 12 ms.
 - np = 2: SIGTERM to the run writes a checkpoint and stops it with one line
   saying how to resume; the resumed run equals the uninterrupted np = 2 run
   byte for byte.
-- Resuming on another number of processes, without a checkpoint, with
+- The same checkpoint resumed on 1 and on 3 processes (the state is stored
+  by scene-wide keys, each process's share found whichever process wrote
+  it): every history of nodes, contact, bars and hammer equals the
+  uninterrupted np = 2 run's byte for byte; energy.csv and momentum.csv,
+  sums over the processes taken in another order, to round-off (1e-9 of
+  each value, or of 1 J / 1 kg m/s); the frames are cut into another
+  number of pieces.
+- Resuming without a checkpoint, with
   a changed scene, from a checkpoint of an earlier state layout (its
   info without the 'layout' line: the element order before the fully
   distributed mesh), or from a damaged one (its state file cut short, a
@@ -49,14 +56,35 @@ def strip_date(data):
         (b"\n" + lines[8] if len(lines) > 8 else b"")
 
 
-def compare(a, b, label):
+def close_rows(x, y):
+    """The largest difference of two CSV files' numbers, relative to each
+    value's magnitude or 1 (None: not the same rows and columns)."""
+    rx, ry = x.decode().splitlines(), y.decode().splitlines()
+    if len(rx) != len(ry) or rx[:1] != ry[:1]:
+        return None
+    worst = 0.0
+    for a, b in zip(rx[1:], ry[1:]):
+        fa, fb = a.split(","), b.split(",")
+        if len(fa) != len(fb):
+            return None
+        for u, v in zip(fa, fb):
+            worst = max(worst, abs(float(u) - float(v)) / max(1.0, abs(float(u))))
+    return worst
+
+
+def compare(a, b, label, csv_only=False):
     da, db = os.path.join(work, "output", a), os.path.join(work, "output", b)
-    names = sorted(n for n in os.listdir(da) if n.endswith((".csv", ".vtu", ".pvtu", ".pvd"))
+    names = sorted(n for n in os.listdir(da) if n.endswith((".csv",) if csv_only else (".csv", ".vtu", ".pvtu", ".pvd"))
                    and n != "summary.csv")
     differ = []
     for n in names:
         x = open(os.path.join(da, n), "rb").read()
         y = open(os.path.join(db, n), "rb").read() if os.path.exists(os.path.join(db, n)) else None
+        if csv_only and y is not None and x != y and n in ("energy.csv", "momentum.csv"):
+            worst = close_rows(x, y)
+            print(f"  {label}: {n} differs from the uninterrupted run's by {worst} (relative, limit 1e-9)")
+            if worst is not None and worst <= 1e-9:
+                continue
         if y is None or (x != y and strip_date(x) != strip_date(y)):
             differ.append(n)
     csvs = sum(n.endswith(".csv") for n in names)
@@ -101,9 +129,20 @@ out, err = p.communicate()
 lines = [l for l in err.splitlines() if l.startswith("anvil:")]
 c.check_true("SIGTERM: one line saying how to resume",
              len(lines) == 1 and "interrupted at t =" in lines[0] and "anvil --resume" in lines[0], err.strip()[-300:])
+
+# The np = 2 checkpoint resumed on 1 and on 3 processes, each from a copy.
+for np in (1, 3):
+    name = f"term_on{np}"
+    shutil.rmtree(os.path.join(work, "output", name), ignore_errors=True)
+    shutil.copytree(os.path.join(work, "output", "term"), os.path.join(work, "output", name))
 r = subprocess.run(command("term", np=2, resume=True, extra=longer), cwd=work, capture_output=True, text=True)
 c.check_true("resumed on 2 processes", r.returncode == 0, r.stderr.strip()[-300:])
 compare("full2", "term", "np = 2, SIGTERM and resumed")
+for np in (1, 3):
+    r = subprocess.run(command(f"term_on{np}", np=np, resume=True, extra=longer), cwd=work, capture_output=True,
+                       text=True)
+    c.check_true(f"the np = 2 checkpoint resumed on {np} process(es)", r.returncode == 0, r.stderr.strip()[-300:])
+    compare("full2", f"term_on{np}", f"np = 2 checkpoint resumed on np = {np}", csv_only=True)
 
 # The same, one process, to see its exit status.
 p = subprocess.Popen(command("term1", extra=longer), cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -150,11 +189,16 @@ def with_trailer(state):
 
 
 def record_changed(change):
+    # The file: the stream (its length, 8 bytes, then its bytes; the
+    # records are in it), then the keyed tables.
     def apply(data):
         state = bytes(data[:-20])
         key = b"family 'contact'"
         at = state.index(key) + len(key)
-        return bytearray(with_trailer(change(state, at)))
+        changed = change(state, at)
+        grown = len(changed) - len(state)
+        stream = struct.unpack_from("<Q", changed, 0)[0]
+        return bytearray(with_trailer(struct.pack("<Q", stream + grown) + changed[8:]))
     return apply
 
 
@@ -178,7 +222,6 @@ for label, cmd, words in (
         ("with a family's record one field longer", damaged("longer", record_changed(one_field_more)),
          ["family 'contact'", "longer than version 1", "another version of Anvil"]),
         ("from an earlier state layout", command("old_layout", resume=True), ["layout 1", "run the scene again"]),
-        ("on another number of processes", command("term", np=1, resume=True), ["written by 2", "-np 2"]),
         ("without a checkpoint", command("nothing", resume=True), ["no checkpoint"]),
         ("with a changed mesh", command("term1", resume=True, extra=["--set", "Body column/Mesh/Subdivisions=6, 6, 60"]),
          ["does not fit"])):

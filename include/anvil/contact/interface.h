@@ -211,8 +211,14 @@ namespace anvil::Contact
       (void)ids;
     }
 
-    /** Everything a step changes (checkpoints). */
+    /** Everything a step changes (checkpoints): what every rank holds
+        alike in the stream, each node's state (by its index in the pair)
+        in keyed tables, written by the rank in own_nodes. */
     virtual void serialize(StateArchive &ar) = 0;
+
+    /** The pair's nodes (indices into node_dofs()) whose dofs this rank
+        owns, set before the first step. */
+    std::vector<std::uint64_t> own_nodes;
 
     std::string name;
     std::string first_body, second_body;

@@ -539,12 +539,9 @@ namespace anvil::Element
     bool batch_points = true;
 
   public:
-    /** Everything a step changes (checkpoints). */
-    void serialize(StateArchive &ar)
-    {
-      ar &alive &stresses &history &cold_history &hourglass_modes &hourglass_resistance
-        &internal_energy &hourglass_energy &bulk_pressure &shape_factor &n_calls &refresh_shape
-          &strength_factors &energy_weight;
-    }
+    /** Everything a step changes (checkpoints): the elements' state by
+        their scene-wide id in the keyed table @p table (the owned ones
+        written, the owned and ghost ones read). */
+    void serialize(StateArchive &ar, const std::string &table);
   };
 } // namespace anvil::Element

@@ -160,12 +160,10 @@ namespace anvil::Rebar
     /** Trilinear shape functions at xi (lexicographic vertices). */
     static std::array<double, 8> shape_values(const std::array<double, 3> &xi);
 
-    /** Everything a step changes (checkpoints). */
-    void serialize(StateArchive &ar)
-    {
-      ar &length &stress &force &energy &history &x &xs &vs &fs &xh &plastic_slip &damage &bond_stress
-        &slip &bond_force &pulled &pull_reaction &nodal_force &tangent &x_bond_old &pvd_records &substeps
-        &substep;
-    }
+    /** Everything a step changes (checkpoints): the substeps and frames
+        in the stream, the elements' and nodes' state in the keyed tables
+        @p table (each node's by the process that owns its host cell, each
+        element's by its first node's). */
+    void serialize(StateArchive &ar, const std::string &table);
   };
 } // namespace anvil::Rebar

@@ -48,8 +48,8 @@ namespace anvil::Rebar
     void   output_frame(double t, unsigned int count) override;
     void serialize(StateArchive &ar) override
     {
-      for (auto &t : bars)
-        t.serialize(ar);
+      for (unsigned int r = 0; r < bars.size(); ++r)
+        bars[r].serialize(ar, "layout '" + layouts[r].name + "'");
       ar &own_step &pending_step_change;
     }
 

@@ -158,7 +158,7 @@ namespace anvil
         their masters (nothing without local refinement). */
     void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 10;
+    static constexpr int checkpoint_layout = 11;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
@@ -217,9 +217,11 @@ namespace anvil
     /** Load the checkpoint in @p directory; @p new_stage: the histories,
         frames and summary start afresh (a stage of its own). */
     void load_checkpoint(const std::string &directory, bool new_stage);
-    /** The checkpoint in @p directory exists and was written by as many
-        processes as this run has; InputError otherwise. */
+    /** The checkpoint in @p directory exists and is of this build's
+        layout; InputError otherwise. */
     void check_checkpoint(const std::string &directory) const;
+    /** How many processes wrote the checkpoint in @p directory. */
+    unsigned int checkpoint_processes(const std::string &directory) const;
     /** For --resume: the output directory must hold a checkpoint; nothing
         is deleted, the run's file list is read back. */
     void resume_output_directory();
@@ -321,6 +323,9 @@ namespace anvil
     VectorType mass;
     /** Body index of each locally owned dof, for momentum output. */
     std::vector<unsigned char> dof_body, dof_component;
+    /** Each locally owned dof's key in a checkpoint, 3 (its node's scene
+        vertex) + component: the same for any partition. */
+    std::vector<std::uint64_t> dof_key;
 
     /** A mask of the owned dofs that belong to rigid bodies (empty: no
         rigid bodies), set by the rigid-body family. */

@@ -8,6 +8,8 @@
  */
 #pragma once
 
+#include <cstdint>
+
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/timer.h>
@@ -112,6 +114,9 @@ namespace anvil
     const std::vector<unsigned char> &get_dof_body() const;
     const std::vector<unsigned char> &get_dof_component() const;
     const std::vector<unsigned char> &get_rigid_dof() const;
+    /** Per owned dof, its key in a checkpoint's tables (the same for any
+        partition: 3 scene vertex + component). */
+    const std::vector<std::uint64_t> &get_dof_keys() const;
     /** The velocity of the owned dof @p i at the integer time n, the last
         step @p dt after the half step: v^{n+1/2} - dt/2 a^n with the mass
         damping's force part of a^n; a constrained dof's prescribed

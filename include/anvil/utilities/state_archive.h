@@ -3,12 +3,22 @@
  * The state of a run in bytes, for checkpoints: one archive per process,
  * written and read back in the same order (the same class lists its
  * members once, for both directions), so a resumed run continues bitwise.
+ *
+ * What every process holds alike (the clock, the energies, a rigid body)
+ * goes into the archive's stream; what belongs to one process's share of
+ * the scene (a node, an element, a bar's node, a contact pair's node) goes
+ * into keyed tables, by a key that names the item in the whole scene (a
+ * node's scene vertex, an element's id). A run resumed on another number
+ * of processes, or after a new partition, reads the stream of one process
+ * and finds each of its items in the tables whichever process wrote them.
  */
 #pragma once
 
-#include <deal.II/lac/la_parallel_vector.h>
-
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -17,16 +27,163 @@
 
 namespace anvil
 {
+  /**
+   * Per-item values by scene-wide key: n_values doubles per key, the keys
+   * in the order written (one process's) or sorted (merged over the
+   * processes). A table of n_values = 0 is a set of keys (several processes
+   * may name the same key).
+   */
+  struct KeyedTable
+  {
+    unsigned int               n_values = 0;
+    std::vector<std::uint64_t> keys;
+    std::vector<double>        values;
+  };
+  using KeyedTables = std::map<std::string, KeyedTable>;
+
+  /**
+   * One item's record in a keyed table, read or written value by value:
+   * saving, each call copies a value of the item's arrays into the record;
+   * loading, the record's next value into the array (integers and flags
+   * through a double, exact).
+   */
+  class RecordCursor
+  {
+  public:
+    RecordCursor(double *record, const bool save)
+      : at(record)
+      , save(save)
+    {}
+    template <typename T>
+    void operator()(T &x)
+    {
+      if (save)
+        *at++ = static_cast<double>(x);
+      else
+        x = static_cast<T>(*at++);
+    }
+    template <typename T>
+    void operator()(std::vector<T> &v, const std::size_t first, const unsigned int n)
+    {
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          T x = v[first + k];
+          (*this)(x);
+          v[first + k] = x;
+        }
+    }
+
+  private:
+    double    *at;
+    const bool save;
+  };
+
   class StateArchive
   {
   public:
     /** An archive to write into. */
-    StateArchive() = default;
-    /** An archive that reads @p data. */
-    explicit StateArchive(std::string data)
+    StateArchive()
+      : tables(std::make_shared<KeyedTables>())
+    {}
+    /** An archive that reads @p data, its keyed tables merged from every
+        process's in @p merged (none: an archive without tables). */
+    explicit StateArchive(std::string data, std::shared_ptr<const KeyedTables> merged = nullptr)
       : loading(true)
       , buffer(std::move(data))
+      , tables(std::const_pointer_cast<KeyedTables>(merged ? merged : std::make_shared<KeyedTables>()))
     {}
+
+    /** An archive of its own stream that shares this one's tables, its
+        table names under @p prefix (a family's record). */
+    StateArchive nested(const std::string &prefix, std::string data = {}) const
+    {
+      StateArchive a;
+      a.loading = loading;
+      a.buffer  = std::move(data);
+      a.tables  = tables;
+      a.prefix  = this->prefix + prefix + "/";
+      return a;
+    }
+
+    /** The keyed tables written so far (writing). */
+    const KeyedTables &keyed_tables() const
+    {
+      return *tables;
+    }
+
+    /**
+     * Per-item values by key. Writing, the items this process owns: @p
+     * keys and their n_values values each in @p values (item-major).
+     * Reading, the items this process holds: @p values is sized and filled
+     * from the merged tables for @p keys; an item no process wrote is an
+     * error (the checkpoint is not of this scene), or with @p may_be_new
+     * an item the scene has gained since (a stage's new boundary
+     * condition), which keeps @p fresh.
+     */
+    void keyed(const std::string &name, const std::vector<std::uint64_t> &keys, const unsigned int n_values,
+               std::vector<double> &values, const bool may_be_new = false, const double fresh = 0.)
+    {
+      const std::string full = prefix + name;
+      if (!loading)
+        {
+          if (values.size() != std::size_t(n_values) * keys.size())
+            throw std::logic_error("keyed state '" + full + "': " + std::to_string(values.size()) +
+                                   " values for " + std::to_string(keys.size()) + " items");
+          auto &t    = (*tables)[full];
+          t.n_values = n_values;
+          t.keys.insert(t.keys.end(), keys.begin(), keys.end());
+          t.values.insert(t.values.end(), values.begin(), values.end());
+          return;
+        }
+      values.assign(std::size_t(n_values) * keys.size(), fresh);
+      if (keys.empty())
+        return;
+      const auto t = tables->find(full);
+      if (t == tables->end() && may_be_new)
+        return;
+      if (t == tables->end() || t->second.n_values != n_values)
+        throw std::runtime_error("the checkpoint holds no table '" + full + "' of " + std::to_string(n_values) +
+                                 " values an item");
+      const auto &k = t->second.keys;
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        {
+          const auto at = std::lower_bound(k.begin(), k.end(), keys[i]);
+          if ((at == k.end() || *at != keys[i]) && may_be_new)
+            continue;
+          if (at == k.end() || *at != keys[i])
+            throw std::runtime_error("the checkpoint holds no item " + std::to_string(keys[i]) + " of '" + full +
+                                     "'");
+          const std::size_t j = at - k.begin();
+          std::copy_n(t->second.values.begin() + j * n_values, n_values, values.begin() + i * n_values);
+        }
+    }
+
+    /** A set of keys that several processes may each hold part of (or
+        the same keys): writing, this process's; reading, the sorted union
+        of every process's. */
+    void key_union(const std::string &name, std::vector<std::uint64_t> &keys)
+    {
+      std::vector<double> none;
+      if (!loading)
+        {
+          keyed(name, keys, 0, none);
+          return;
+        }
+      const auto t = tables->find(prefix + name);
+      keys.clear();
+      if (t != tables->end())
+        keys = t->second.keys;
+    }
+
+    /** The tables of every process's file merged (reading): the keys
+        sorted with their values, a set's keys made unique; a key written
+        twice in a table of values is an error. */
+    static std::shared_ptr<const KeyedTables> merge(const std::vector<KeyedTables> &parts);
+
+    /** The stream and the tables in one string (a checkpoint file), and
+        back. */
+    std::string file_data() const;
+    static std::pair<std::string, KeyedTables> split_file_data(const std::string &data);
 
     bool is_loading() const
     {
@@ -52,9 +209,11 @@ namespace anvil
     }
 
   private:
-    bool        loading  = false;
-    std::string buffer;
-    std::size_t position = 0;
+    bool                         loading = false;
+    std::string                  buffer;
+    std::size_t                  position = 0;
+    std::shared_ptr<KeyedTables> tables;
+    std::string                  prefix;
 
     void bytes(void *p, const std::size_t n)
     {
@@ -122,14 +281,5 @@ namespace anvil
       io(p.second);
     }
 
-    /** The locally owned entries; the caller updates the ghosts. */
-    void io(dealii::LinearAlgebra::distributed::Vector<double> &v)
-    {
-      const std::size_t n = size(v.locally_owned_size());
-      if (n != v.locally_owned_size())
-        throw std::runtime_error("the checkpoint was written with another partition");
-      if (n > 0)
-        bytes(v.begin(), n * sizeof(double));
-    }
   };
 } // namespace anvil
