@@ -254,14 +254,10 @@ int main(int argc, char **argv)
             }
           return 0;
         }
-      if (cost || !resume_from.empty())
-        {
-          anvil::Simulator simulator(file, MPI_COMM_WORLD, overrides);
-          if (cost)
-            simulator.print_cost();
-          else
-            simulator.run(false, resume_from);
-        }
+      if (cost)
+        anvil::Simulator(file, MPI_COMM_WORLD, overrides).print_cost();
+      else if (!resume_from.empty())
+        anvil::run_simulator(file, MPI_COMM_WORLD, overrides, false, resume_from);
       else
         anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume, check_only);
     }

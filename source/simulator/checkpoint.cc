@@ -468,6 +468,15 @@ namespace anvil
             files[k]->resume(parameters.output_directory + "/" + names[k], lengths[k]);
       }
     output.last_flush = std::chrono::steady_clock::now();
-    pcout << "  resumed from the checkpoint at t = " << time << " s, step " << step_number << std::endl;
+    if (run_wall_start)
+      {
+        const auto counts = Utilities::MPI::gather(mpi_communicator, triangulation.n_locally_owned_active_cells());
+        pcout << "  the run goes on from t = " << time << " s on the new partition (elements per process:";
+        for (const auto n : counts)
+          pcout << ' ' << n;
+        pcout << ")" << std::endl;
+      }
+    else
+      pcout << "  resumed from the checkpoint at t = " << time << " s, step " << step_number << std::endl;
   }
 } // namespace anvil

@@ -428,7 +428,7 @@ namespace anvil
                         Patterns::Double(0.),
                         "Simulated time between checkpoints (OUTPUT/NAME/checkpoint/: "
                         "everything 'anvil --resume SCENE.prm' needs to continue the run "
-                        "bitwise on the same number of processes); 0: none. SIGTERM and "
+                        "bitwise, on any number of processes); 0: none. SIGTERM and "
                         "SIGINT always write one and stop the run. Units: s.");
       prm.declare_entry("Checkpoint wall interval",
                         "0",
@@ -468,6 +468,25 @@ namespace anvil
                         "results do not depend on it, bit for bit; the ghost "
                         "layer and the balance do (summary.csv: ghost_elements, "
                         "ghost_dofs; doc/performance.md). Units: none.");
+      prm.declare_entry("Rebalance interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Simulated time between checks of the balance of the "
+                        "processes' element work (several processes only): where the "
+                        "slowest process spent more than 'Rebalance threshold' times "
+                        "the mean in the element loop since the last check, the "
+                        "elements are partitioned anew, each weighed by the time its "
+                        "kind took per element on its process (cracking concrete, a "
+                        "process sharing its core), and the run goes on from a "
+                        "checkpoint on the new partition, bit for bit the same "
+                        "trajectory; 0: never (the partition of the start, by element "
+                        "kind). Units: s.");
+      prm.declare_entry("Rebalance threshold",
+                        "1.1",
+                        Patterns::Double(1.),
+                        "The imbalance (the slowest process's element time over the "
+                        "mean) above which a check of 'Rebalance interval' partitions "
+                        "anew. Units: none.");
       prm.declare_entry("Output compression",
                         "zlib",
                         Patterns::Selection("zlib|none"),
@@ -867,6 +886,8 @@ namespace anvil
         parameters.compress_output  = prm.get("Output compression") == "zlib";
         parameters.partitioner      = prm.get("Partitioner");
         parameters.checkpoint_interval      = prm.get_double("Checkpoint interval");
+        parameters.rebalance_interval       = prm.get_double("Rebalance interval");
+        parameters.rebalance_threshold      = prm.get_double("Rebalance threshold");
         parameters.checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         parameters.checkpoint_at_end        = prm.get_bool("Checkpoint at end");
         prm.leave_subsection();

@@ -251,6 +251,9 @@ namespace anvil
   // for a fully integrated one, 100 for a rigid body's. The partition is a
   // function of the mesh and the scene only, so a resumed run finds the
   // same one; the results do not depend on it.
+  //
+  // A run partitioned anew during its course ('Rebalance interval') weighs
+  // each cell by what its element measured instead (check_balance()).
   void Simulator::partition_by_cost(Triangulation<3> &serial) const
   {
     const unsigned long n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
@@ -263,6 +266,8 @@ namespace anvil
           body.integration_at(cell->center()) == Element::Integration::full ? full_integration_weight :
                                                                               1000;
       }
+    if (partition_weights.size() == weight.size())
+      weight = partition_weights;
     // A graph partitioner (METIS, Trilinos' Zoltan) on the cells' face
     // graph with the same weights.
     if (n_ranks > 1 && parameters.partitioner != "hierarchical")

@@ -61,11 +61,10 @@ namespace anvil
     const std::vector<Stage> stages = Simulator::read_stages(file, overrides);
     if (stages.empty())
       {
-        Simulator simulator(file, comm, overrides);
         if (check_only)
-          simulator.check();
+          Simulator(file, comm, overrides).check();
         else
-          simulator.run(resume);
+          run_simulator(file, comm, overrides, resume);
         return;
       }
 
@@ -127,19 +126,18 @@ namespace anvil
         if (s > 0)
           pcout << "Anvil: stage " << s << " of " << stages.size() << ", '" << stages[s - 1].name << "'"
                 << std::endl;
-        Simulator simulator(file, comm, stage_overrides[s]);
         if (resume && fs::exists(here + "/checkpoint/info"))
-          simulator.run(true);
+          run_simulator(file, comm, stage_overrides[s], true);
         else if (s == 0)
           {
             if (resume)
               throw InputError(file + ": --resume: no checkpoint in '" + here +
                                "/checkpoint' (set 'Checkpoint interval' or stop a run with SIGTERM to "
                                "write one)");
-            simulator.run(false);
+            run_simulator(file, comm, stage_overrides[s], false);
           }
         else
-          simulator.run(false, previous + "/checkpoint");
+          run_simulator(file, comm, stage_overrides[s], false, previous + "/checkpoint");
         previous = here;
       }
 

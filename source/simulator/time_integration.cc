@@ -509,6 +509,16 @@ namespace anvil
       {
         run_scene(resume, resume_from);
       }
+    catch (const RebalanceRequest &)
+      {
+        // (The run goes on from its checkpoint: no summary of its part.)
+        if (timer)
+          {
+            timer->disable_output();
+            timer.reset();
+          }
+        throw;
+      }
     catch (...)
       {
         // Every rank arrives here together (input errors and numerical
@@ -553,7 +563,7 @@ namespace anvil
   void Simulator::run_scene(const bool resume, const std::string &resume_from)
   {
     start_run(resume, resume_from);
-    RunClock clock{std::chrono::steady_clock::now(), time, 0., 1e-12 * parameters.end_time};
+    RunClock clock{run_wall_start.value_or(std::chrono::steady_clock::now()), time, 0., 1e-12 * parameters.end_time};
     output.next_checkpoint      = parameters.checkpoint_interval > 0 ? time + parameters.checkpoint_interval : 1e300;
     output.last_checkpoint_wall = clock.wall_start;
     double      &dt_previous  = loop.dt_previous;
@@ -644,20 +654,23 @@ namespace anvil
       balance.good_velocity = velocity;
     }
 
-    pcout << "Anvil: scene '" << parameters.scene_name << "' from " << parameters.scene_file << "\n"
-          << "  " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " MPI process(es), " << triangulation.n_global_active_cells()
-          << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
-    for (const auto &b : bodies)
-      pcout << "  body '" << b.name << "': " << to_string(b.formulation) << ", "
-            << Element::to_string(b.integration) << " integration"
-            << (b.integration == Element::Integration::one_point ?
-                  ", " + Element::to_string(b.hourglass) + " hourglass control" :
-                  std::string())
-            << "\n";
-    pcout << "  the step computes: " << step_contents() << "\n";
-    pcout << "  results in " << parameters.output_directory << "/" << std::endl;
-
+    // (A run that goes on after a rebalance has said all this.)
+    if (!run_wall_start)
+      {
+        pcout << "Anvil: scene '" << parameters.scene_name << "' from " << parameters.scene_file << "\n"
+              << "  " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+              << " MPI process(es), " << triangulation.n_global_active_cells()
+              << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
+        for (const auto &b : bodies)
+          pcout << "  body '" << b.name << "': " << to_string(b.formulation) << ", "
+                << Element::to_string(b.integration) << " integration"
+                << (b.integration == Element::Integration::one_point ?
+                      ", " + Element::to_string(b.hourglass) + " hourglass control" :
+                      std::string())
+                << "\n";
+        pcout << "  the step computes: " << step_contents() << "\n";
+        pcout << "  results in " << parameters.output_directory << "/" << std::endl;
+      }
     if (resume)
       load_checkpoint(parameters.output_directory + "/checkpoint", false);
     else if (!resume_from.empty())
@@ -701,6 +714,14 @@ namespace anvil
     // (The element loop's balance: this run's steps only.)
     element_balance        = {};
     element_balance.record = parameters.print_wall_times && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
+    // The balance checks ('Rebalance interval'): timed groups, the first
+    // check an interval after the start (a fresh run or stage; a resumed
+    // run keeps the checkpoint's schedule).
+    const bool rebalancing =
+      parameters.rebalance_interval > 0 && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
+    solids->time_groups(rebalancing);
+    if (rebalancing && (!resume || !(loop.next_rebalance > time)))
+      loop.next_rebalance = time + parameters.rebalance_interval;
   }
 
 
@@ -818,6 +839,13 @@ namespace anvil
         while (output.next_checkpoint <= time + clock.eps)
           output.next_checkpoint += parameters.checkpoint_interval;
       }
+    if (parameters.rebalance_interval > 0 && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1 &&
+        time >= loop.next_rebalance - clock.eps && time < parameters.end_time - clock.eps && !output.stop_requested)
+      {
+        while (loop.next_rebalance <= time + clock.eps)
+          loop.next_rebalance += parameters.rebalance_interval;
+        check_balance();
+      }
     if (output.checkpoint_due || output.stop_requested)
       {
         write_checkpoint();
@@ -827,8 +855,7 @@ namespace anvil
             std::ostringstream msg;
             msg << "interrupted at t = " << time << " s, step " << step_number
                 << ": checkpoint and frame index written; continue with 'anvil --resume "
-                << parameters.scene_file << "' on " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-                << " process(es)";
+                << parameters.scene_file << "' (on any number of processes)";
             throw Interrupted(msg.str());
           }
       }

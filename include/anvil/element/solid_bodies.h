@@ -75,6 +75,17 @@ namespace anvil::Element
     {
       return rows;
     }
+    /** Time each group's elements (a clock around each group's loop, for
+        'Rebalance interval'): the seconds since the last reset, per group. */
+    void time_groups(const bool on)
+    {
+      timed = on;
+      group_seconds.assign(element_groups.size(), 0.);
+    }
+    std::vector<double> &seconds_per_group()
+    {
+      return group_seconds;
+    }
 
   private:
     /** What erosion.csv tells of each owned element of group @p g eroded
@@ -96,5 +107,7 @@ namespace anvil::Element
     std::array<double, 5>            increments{};
     std::vector<unsigned long>       eroded;
     std::vector<double>              eroded_info;
+    bool                             timed = false;
+    std::vector<double>              group_seconds;
   };
 } // namespace anvil::Element

@@ -58,5 +58,8 @@ namespace anvil
     std::vector<unsigned char> inactive_bodies;
     /** 'Partitioner': hierarchical, metis or zoltan. */
     std::string partitioner = "hierarchical";
+    /** 'Rebalance interval' (s; 0: never) and 'Rebalance threshold'. */
+    double rebalance_interval  = 0;
+    double rebalance_threshold = 1.1;
   };
 } // namespace anvil

@@ -34,6 +34,7 @@
 #include <chrono>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,15 @@ namespace anvil
   struct RecordMismatch : std::runtime_error
   {
     explicit RecordMismatch(const std::string &what);
+  };
+
+
+  /** A run that asks to be partitioned anew ('Rebalance interval'): its
+      checkpoint is written, and the run goes on from it on the partition
+      of these weights (per element id; run_simulator()). */
+  struct RebalanceRequest
+  {
+    std::vector<unsigned long> weights;
   };
 
 
@@ -106,6 +116,15 @@ namespace anvil
         of another run, continued under this scene's boundary conditions,
         loads and end (doc/user_guide.md, "Stages"). */
     void run(bool resume = false, const std::string &resume_from = "");
+
+    /** A run that goes on from a rebalance's checkpoint (RebalanceRequest):
+        the elements partitioned by @p weights (per element id), the wall
+        clock of the run from @p wall_start. */
+    void set_rebalance(std::vector<unsigned long> weights, std::chrono::steady_clock::time_point wall_start)
+    {
+      partition_weights = std::move(weights);
+      run_wall_start    = wall_start;
+    }
 
     /** Build everything a run needs (mesh, DoFs, boundary conditions,
         contact surfaces) without running or writing: a scene check. */
@@ -239,6 +258,8 @@ namespace anvil
       double held_dt       = 0;
       /** The time the run (or its stage) started from. */
       double stage_start = 0;
+      /** The next check of the processes' balance ('Rebalance interval'). */
+      double next_rebalance = 0;
     };
     LoopState loop;
     void   zero_forces();
@@ -431,7 +452,26 @@ namespace anvil
       unsigned long      steps  = 0;
       double             own = 0, slowest_by_step = 0, mean = 0;
     } element_balance;
+
+    /** 'Rebalance interval': the processes' element times since the last
+        check; past the threshold, each element's weight (its group's time
+        per element on its process), a checkpoint and a RebalanceRequest. */
+    void check_balance();
+    /** The weights of a rebalance (per element id; empty: by element kind,
+        partition_by_cost()) and the wall clock's start of the whole run. */
+    std::vector<unsigned long>                   partition_weights;
+    std::optional<std::chrono::steady_clock::time_point> run_wall_start;
   };
+
+  /**
+   * A run of @p file (Simulator::run()), partitioned anew from its
+   * checkpoint wherever it asks (RebalanceRequest), until it ends.
+   */
+  void run_simulator(const std::string              &file,
+                     MPI_Comm                        comm,
+                     const std::vector<std::string> &overrides,
+                     bool                            resume,
+                     const std::string              &resume_from = "");
 
   /**
    * `anvil SCENE.prm` (and --check, --resume): the scene's own run, then
