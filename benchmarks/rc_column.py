@@ -19,8 +19,9 @@ and of the far face, peak hammer force, hourglass share, and each
 quantity's change from the previous mesh.
 
 Whole scene (--whole): the production scene as it ships (its end
-criterion ends it once the impact is over), on 1 and 2 processes: end
-time, steps, wall time, sections.
+criterion ends it once the impact is over), on 1 and 2 processes, and on 2
+partitioned anew during the run ('Rebalance interval = 1 ms', threshold
+1.1): end time, steps, wall time, sections, new partitions.
 
 Local refinement (--adaptive): the bond-slip column to the end criterion on
 2 processes, uniform at 10 mm (the production scene), uniform at 20 mm, and
@@ -83,19 +84,26 @@ def shares(sections):
 if "--whole" in sys.argv:
     print("rc_column: the production scene (10 mm) as it ships, to its end criterion")
     walls = {}
-    for np in (1, 2):
-        s, sections, _ = run(f"whole_np{np}", np, """
+    for np, rebalance in ((1, False), (2, False), (2, True)):
+        name = f"whole_np{np}" + ("_rebalanced" if rebalance else "")
+        s, sections, out = run(name, np, """
 subsection Simulation
   set Plots = false
-end
+""" + ("  set Rebalance interval = 0.001\n" if rebalance else "") + """end
 """)
-        walls[np] = s["wall_time_s"]
-        print(f"  np = {np}: ended at {1e3 * s['end_time_s']:.1f} ms, {int(s['steps'])} steps, "
-              f"{s['wall_time_s']:.1f} s wall ({s['wall_time_s'] / 60:.2f} min), "
+        walls[name] = s["wall_time_s"]
+        log = open(os.path.join(work, name + ".out")).read()
+        partitions = re.findall(r"elements per process: ([\d ]+)\)", log)
+        print(f"  np = {np}{' rebalanced' if rebalance else ''}: ended at {1e3 * s['end_time_s']:.1f} ms, "
+              f"{int(s['steps'])} steps, {s['wall_time_s']:.1f} s wall ({s['wall_time_s'] / 60:.2f} min), "
               f"{1e9 * s['wall_time_s'] / (s['elements'] * s['steps']):.0f} ns per element-cycle; "
-              f"{shares(sections)}", flush=True)
-    print(f"  two processes: speed-up {walls[1] / walls[2]:.2f}, parallel efficiency "
-          f"{100 * walls[1] / (2 * walls[2]):.0f} %")
+              f"{shares(sections)}" + (f" (the last partition's part); {len(partitions)} new partitions, "
+                                       f"elements per process {', '.join(partitions)}" if rebalance else ""),
+              flush=True)
+    for name in ("whole_np2", "whole_np2_rebalanced"):
+        print(f"  two processes{' rebalanced' if 'rebalanced' in name else ''}: speed-up "
+              f"{walls['whole_np1'] / walls[name]:.2f}, parallel efficiency "
+              f"{100 * walls['whole_np1'] / (2 * walls[name]):.0f} %")
 elif "--mesh-study" not in sys.argv and "--adaptive" not in sys.argv:
     print(f"rc_column: production scene (10 mm) to {1e3 * end_time:g} ms")
     for np in (1, 2):

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 
 #include <xsimd/xsimd.hpp>
 
@@ -623,6 +624,36 @@ namespace anvil::Element
   }
 
 
+  void ElementGroup::time_elements(const bool on)
+  {
+    const unsigned int n  = n_elements();
+    const bool         ul = formulation == Formulation::updated_lagrangian;
+    timing_chunk          = !on ? 0 :
+                            ul && integration == Integration::one_point ? W :
+                            ul && integration == Integration::full      ? 1 :
+                                                                          std::max(1u, n);
+    timing_whole = on && timing_chunk == std::max(1u, n) && !(ul && integration == Integration::one_point) &&
+                   !(ul && integration == Integration::full);
+    chunk_seconds.assign(on && n > 0 ? (n + timing_chunk - 1) / timing_chunk : 0, 0.);
+  }
+
+
+  double ElementGroup::element_seconds(const unsigned int e) const
+  {
+    if (timing_chunk == 0 || chunk_seconds.empty())
+      return 0.;
+    const unsigned int c     = e / timing_chunk;
+    const unsigned int first = c * timing_chunk;
+    return chunk_seconds[c] / std::min(timing_chunk, n_elements() - first);
+  }
+
+
+  double ElementGroup::measured_seconds() const
+  {
+    return std::accumulate(chunk_seconds.begin(), chunk_seconds.end(), 0.);
+  }
+
+
   void ElementGroup::set_nodal_mass_ratio(const double *ratio)
   {
     for (unsigned int e = 0; e < mass_factor.size(); ++e)
@@ -668,6 +699,20 @@ namespace anvil::Element
                                                    double       *force)
   {
     refresh_shape = (n_calls++ % shape_refresh_interval == 0);
+    // (A group whose loop does not time its chunks is timed whole.)
+    if (timing_whole)
+      {
+        auto       mark = std::chrono::steady_clock::now();
+        const auto r    = dispatch_loop(x, v, dt, force);
+        tick(mark, 0);
+        return r;
+      }
+    return dispatch_loop(x, v, dt, force);
+  }
+
+
+  LoopResult ElementGroup::dispatch_loop(const double *x, const double *v, const double dt, double *force)
+  {
     // Dispatch once per group to a loop specialised at compile time. The
     // one-point updated Lagrangian path, the workhorse of impact analysis,
     // runs batched; the others element by element.
@@ -1127,9 +1172,14 @@ namespace anvil::Element
     const unsigned int     n_el      = n_elements();
     const auto            &dNp       = point_tables.by_point;
     const auto            &dNn       = point_tables.by_node;
+    // (With time_elements(): each element's time, clock to clock.)
+    const bool timed = timing_chunk > 0;
+    auto       mark  = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
 
     for (unsigned int e = 0; e < n_el; ++e)
       {
+        if (timed && e > 0)
+          tick(mark, e - 1);
         if (can_erode && !alive[e])
           continue;
         const std::array<unsigned int, 8> en = element_nodes(e);
@@ -1282,6 +1332,8 @@ namespace anvil::Element
           for (unsigned int a = 0; a < 3; ++a)
             force[en[n] + a] += fe[a][n];
       }
+    if (timed && n_el > 0)
+      tick(mark, n_el - 1);
     result.critical_time_step = std::sqrt(min_dt2);
     return result;
   }
@@ -1382,9 +1434,14 @@ namespace anvil::Element
     const double           b1 = bulk_linear, b2 = bulk_quadratic,
                            expansion_factor2 = bulk_dt_factor2_expansion;
     const bool             can_erode = !alive.empty();
+    // (With time_elements(): each batch's time, clock to clock.)
+    const bool timed = timing_chunk > 0;
+    auto       mark  = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
 
     for (unsigned int e0 = 0; e0 < n_el; e0 += W)
       {
+        if (timed && e0 > 0)
+          tick(mark, e0 / W - 1);
         // The lanes: the batch's live elements; the padding of the last
         // batch and eroded elements repeat a live element of the batch and
         // are never written back (their history is a scratch copy), so an
@@ -1735,6 +1792,8 @@ namespace anvil::Element
                 force[idx[n][l] + a] += fe[n][a][l];
           }
       }
+    if (timed && n_el > 0)
+      tick(mark, (n_el - 1) / W);
     result.critical_time_step = std::sqrt(min_dt2);
     return result;
   }

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -162,10 +161,7 @@ namespace anvil::Element
         // A rigid body's elements carry no force and do not limit the step.
         if (group.get_material().is_rigid())
           continue;
-        const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
-        const auto r     = group.compute_internal_forces(x, v, dt_previous, f);
-        if (timed)
-          group_seconds[g] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const auto r = group.compute_internal_forces(x, v, dt_previous, f);
         dt_crit          = std::min(dt_crit, r.critical_time_step);
         d_int += r.internal_energy_increment;
         d_hg += r.hourglass_energy_increment;

@@ -23,52 +23,50 @@ namespace anvil
 
   void Simulator::check_balance()
   {
-    auto              &seconds = solids->seconds_per_group();
-    const double       own     = std::accumulate(seconds.begin(), seconds.end(), 0.);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
-    const double       slowest = Utilities::MPI::max(own, mpi_communicator);
-    const double       mean    = Utilities::MPI::sum(own, mpi_communicator) / n_ranks;
+    auto              &groups  = solids->groups();
+    double             own     = 0;
+    for (const auto &g : groups)
+      own += g.measured_seconds();
+    const unsigned int n_ranks   = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    const double       slowest   = Utilities::MPI::max(own, mpi_communicator);
+    const double       mean      = Utilities::MPI::sum(own, mpi_communicator) / n_ranks;
     const double       imbalance = mean > 0 ? slowest / mean : 1.;
     if (!(imbalance > parameters.rebalance_threshold))
       {
-        std::fill(seconds.begin(), seconds.end(), 0.);
+        for (auto &g : groups)
+          g.reset_timing();
         return;
       }
 
-    // Each owned element's cost: its group's time per element on this
-    // process (owned and ghost elements alike: the loop computes both);
-    // a rigid body's elements, which the loop skips, a tenth of the
-    // cheapest group's, as the partition by kind weighs them.
-    const auto        &groups = solids->groups();
-    std::vector<double> per_element(groups.size(), 0.);
-    double              cheapest = 1e300;
-    for (unsigned int g = 0; g < groups.size(); ++g)
-      if (groups[g].n_elements() > 0 && seconds[g] > 0)
-        {
-          per_element[g] = seconds[g] / groups[g].n_elements();
-          cheapest       = std::min(cheapest, per_element[g]);
-        }
-    cheapest = Utilities::MPI::min(cheapest, mpi_communicator);
-    std::vector<double> own_cost; // (id, cost) pairs
-    for (unsigned int g = 0; g < groups.size(); ++g)
-      for (unsigned int e = 0; e < groups[g].n_elements(); ++e)
-        if (groups[g].element_is_owned(e))
-          own_cost.insert(own_cost.end(),
-                          {double(groups[g].element_global_id(e)),
-                           groups[g].get_material().is_rigid() || !(per_element[g] > 0) ? 0.1 * cheapest :
-                                                                                         per_element[g]});
+    // Each owned element's cost: its share of the time of the batch of
+    // elements (one-point) or of the element (fully integrated) it was
+    // computed in, or of its group (the element-by-element loops), on its
+    // process; a rigid body's elements, which the loop skips, a tenth of
+    // the mean element's.
+    std::vector<double> own_cost; // (id, seconds) pairs
+    double              sum = 0, counted = 0;
+    for (const auto &g : groups)
+      for (unsigned int e = 0; e < g.n_elements(); ++e)
+        if (g.element_is_owned(e))
+          {
+            const double t = g.get_material().is_rigid() ? -1. : g.element_seconds(e);
+            own_cost.insert(own_cost.end(), {double(g.element_global_id(e)), t});
+            if (t >= 0)
+              sum += t, counted += 1;
+          }
+    const double mean_cost = Utilities::MPI::sum(sum, mpi_communicator) /
+                             std::max(1., Utilities::MPI::sum(counted, mpi_communicator));
     // Every process the whole table, scaled so that the mean element
     // weighs 1000 (the one-point element of the partition by kind: the
     // graph partitioners take 32-bit weights).
     const auto                 all = Utilities::MPI::all_gather(mpi_communicator, own_cost);
-    std::vector<double>        cost(triangulation.n_global_active_cells(), 0.);
+    std::vector<unsigned long> weights(triangulation.n_global_active_cells(), 1000);
     for (const auto &part : all)
       for (std::size_t i = 0; i + 1 < part.size(); i += 2)
-        cost[static_cast<std::size_t>(part[i])] = part[i + 1];
-    const double mean_cost = std::accumulate(cost.begin(), cost.end(), 0.) / std::max<std::size_t>(1, cost.size());
-    std::vector<unsigned long> weights(cost.size());
-    for (std::size_t i = 0; i < cost.size(); ++i)
-      weights[i] = std::max<unsigned long>(1, std::lround(1000. * cost[i] / mean_cost));
+        weights[static_cast<std::size_t>(part[i])] =
+          part[i + 1] < 0 ? 100 :
+          mean_cost > 0  ? std::max<long>(1, std::lround(1000. * part[i + 1] / mean_cost)) :
+                           1000;
 
     pcout << "  rebalance at t = " << time << " s, step " << step_number << ": the slowest process spent "
           << std::setprecision(3) << imbalance << " times the mean in the element loop since the last check; "

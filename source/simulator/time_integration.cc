@@ -719,7 +719,7 @@ namespace anvil
     // run keeps the checkpoint's schedule).
     const bool rebalancing =
       parameters.rebalance_interval > 0 && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
-    solids->time_groups(rebalancing);
+    solids->time_elements(rebalancing);
     if (rebalancing && (!resume || !(loop.next_rebalance > time)))
       loop.next_rebalance = time + parameters.rebalance_interval;
   }

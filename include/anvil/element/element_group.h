@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -345,6 +346,22 @@ namespace anvil::Element
                        const double      *x,
                        double            *sigma) const;
 
+    /** Measure what the elements cost ('Rebalance interval'): the loop's
+        time per batch of W elements (the batched one-point loop), per
+        element (the fully integrated one) or for the whole group (the
+        element-by-element loops), summed over the calls since
+        reset_timing(). */
+    void time_elements(bool on);
+    void reset_timing()
+    {
+      std::fill(chunk_seconds.begin(), chunk_seconds.end(), 0.);
+    }
+    /** Element @p e's share of the measured time: its chunk's over the
+        chunk's elements. Units: s. */
+    double element_seconds(unsigned int e) const;
+    /** The group's measured time. Units: s. */
+    double measured_seconds() const;
+
     /** Whether the group computes bulk viscosity (a coefficient > 0). */
     bool bulk_viscosity() const
     {
@@ -537,6 +554,21 @@ namespace anvil::Element
     /** Full integration, updated Lagrangian: full_batched_loop() (false
         only while compute_internal_forces_reference() runs loop()). */
     bool batch_points = true;
+    /** time_elements(): the elements a chunk of the measured time covers
+        (0: not measured) and each chunk's seconds. */
+    unsigned int        timing_chunk = 0;
+    bool                timing_whole = false;
+    std::vector<double> chunk_seconds;
+    /** The loop this group's kind runs (compute_internal_forces()). */
+    LoopResult dispatch_loop(const double *x, const double *v, double dt, double *force);
+    /** In a loop that times its chunks: adds the time since the last mark
+        to chunk @p c and marks now. */
+    void tick(std::chrono::steady_clock::time_point &mark, const unsigned int c)
+    {
+      const auto now = std::chrono::steady_clock::now();
+      chunk_seconds[c] += std::chrono::duration<double>(now - mark).count();
+      mark = now;
+    }
 
   public:
     /** Everything a step changes (checkpoints): the elements' state by

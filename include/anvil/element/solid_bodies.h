@@ -75,16 +75,12 @@ namespace anvil::Element
     {
       return rows;
     }
-    /** Time each group's elements (a clock around each group's loop, for
-        'Rebalance interval'): the seconds since the last reset, per group. */
-    void time_groups(const bool on)
+    /** Measure what each element costs ('Rebalance interval';
+        ElementGroup::time_elements()). */
+    void time_elements(const bool on)
     {
-      timed = on;
-      group_seconds.assign(element_groups.size(), 0.);
-    }
-    std::vector<double> &seconds_per_group()
-    {
-      return group_seconds;
+      for (auto &g : element_groups)
+        g.time_elements(on);
     }
 
   private:
@@ -107,7 +103,5 @@ namespace anvil::Element
     std::array<double, 5>            increments{};
     std::vector<unsigned long>       eroded;
     std::vector<double>              eroded_info;
-    bool                             timed = false;
-    std::vector<double>              group_seconds;
   };
 } // namespace anvil::Element
