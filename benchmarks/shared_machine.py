@@ -6,6 +6,11 @@ ranks polling (mpi_yield_when_idle = 0, Open MPI's default, which Anvil
 keeps) and yielding the core (1).
 
     /usr/bin/python3 benchmarks/shared_machine.py --anvil build/anvil [--scene S.prm] [--repeat N]
+                                                  [--rebalance INTERVAL]
+
+--rebalance: the two-process runs partition anew during the run
+('Rebalance interval = INTERVAL', threshold 1.1), so that the process
+sharing its core with the busy job gets fewer elements.
 
 Default scene: prm/rc_column_impact/rc_column_impact_coarse.prm to 5 ms
 (--end-time; doc/performance.md quotes 12 ms).
@@ -31,7 +36,7 @@ def spin(stop):
         x += 1
 
 
-def run(anvil, scene, np, yield_when_idle, end_time, work):
+def run(anvil, scene, np, yield_when_idle, end_time, work, rebalance=None):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     env.pop("OMPI_MCA_mpi_yield_when_idle", None)
     if yield_when_idle is not None:
@@ -39,7 +44,8 @@ def run(anvil, scene, np, yield_when_idle, end_time, work):
     out = os.path.join(work, f"np{np}_y{yield_when_idle}_{time.time_ns()}")
     cmd = ["mpirun", "--bind-to", "none", "-np", str(np), anvil, scene,
            "--set", f"Simulation/Output directory={out}", "--set", f"Simulation/End time={end_time}",
-           "--set", "Simulation/Output interval=0", "--set", "Simulation/Print wall times=false"]
+           "--set", "Simulation/Output interval=0", "--set", "Simulation/Print wall times=false"] + \
+        (["--set", f"Simulation/Rebalance interval={rebalance}"] if rebalance and np > 1 else [])
     t0 = time.perf_counter()
     r = subprocess.run(cmd, cwd=os.path.dirname(scene), env=env, capture_output=True, text=True)
     if r.returncode != 0:
@@ -54,6 +60,7 @@ def main():
                                                    "rc_column_impact_coarse.prm"))
     p.add_argument("--end-time", default="0.005")
     p.add_argument("--repeat", type=int, default=1)
+    p.add_argument("--rebalance", default=None)
     a = p.parse_args()
     anvil, scene = os.path.abspath(a.anvil), os.path.abspath(a.scene)
     with tempfile.TemporaryDirectory() as work:
@@ -64,7 +71,7 @@ def main():
                 spinner.start()
             try:
                 for y in (0, 1):
-                    t = {np: min(run(anvil, scene, np, y, a.end_time, work) for _ in range(a.repeat))
+                    t = {np: min(run(anvil, scene, np, y, a.end_time, work, a.rebalance) for _ in range(a.repeat))
                          for np in (1, 2)}
                     print(f"{'beside a busy job' if busy else 'quiet machine':18s} yield_when_idle {y}: "
                           f"one process {t[1]:7.2f} s, two {t[2]:7.2f} s, speed-up {t[1] / t[2]:5.2f}",

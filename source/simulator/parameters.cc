@@ -487,6 +487,14 @@ namespace anvil
                         "The imbalance (the slowest process's element time over the "
                         "mean) above which a check of 'Rebalance interval' partitions "
                         "anew. Units: none.");
+      prm.declare_entry("Rebalance when it pays",
+                        "true",
+                        Patterns::Bool(),
+                        "Partition anew only where, beside the threshold, the time the "
+                        "slowest process lost to the imbalance since the last check "
+                        "(its element time over the mean) exceeds what a new partition "
+                        "costs (the run's own start: setup, checkpoint, first forces, "
+                        "measured); false: at every check past the threshold.");
       prm.declare_entry("Output compression",
                         "zlib",
                         Patterns::Selection("zlib|none"),
@@ -888,6 +896,7 @@ namespace anvil
         parameters.checkpoint_interval      = prm.get_double("Checkpoint interval");
         parameters.rebalance_interval       = prm.get_double("Rebalance interval");
         parameters.rebalance_threshold      = prm.get_double("Rebalance threshold");
+        parameters.rebalance_when_it_pays   = prm.get_bool("Rebalance when it pays");
         parameters.checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         parameters.checkpoint_at_end        = prm.get_bool("Checkpoint at end");
         prm.leave_subsection();

@@ -31,10 +31,13 @@ namespace anvil
     const double       slowest   = Utilities::MPI::max(own, mpi_communicator);
     const double       mean      = Utilities::MPI::sum(own, mpi_communicator) / n_ranks;
     const double       imbalance = mean > 0 ? slowest / mean : 1.;
-    if (!(imbalance > parameters.rebalance_threshold))
+    // (A new partition costs about what the run's start did: where the
+    // imbalance lost less since the last check, it would not pay back
+    // within the next interval.)
+    const bool pays = !parameters.rebalance_when_it_pays || slowest - mean > startup_seconds;
+    if (!(imbalance > parameters.rebalance_threshold) || !pays)
       {
-        for (auto &g : groups)
-          g.reset_timing();
+        solids->reset_timing();
         return;
       }
 
@@ -69,8 +72,9 @@ namespace anvil
                            1000;
 
     pcout << "  rebalance at t = " << time << " s, step " << step_number << ": the slowest process spent "
-          << std::setprecision(3) << imbalance << " times the mean in the element loop since the last check; "
-          << "the elements are partitioned anew by their measured cost" << std::endl;
+          << std::setprecision(3) << imbalance << " times the mean in the element loop since the last check ("
+          << slowest - mean << " s lost; a new partition costs about " << startup_seconds
+          << " s); the elements are partitioned anew by their measured cost" << std::endl;
     write_checkpoint();
     output.checkpoint_due = false;
     throw RebalanceRequest{std::move(weights)};

@@ -626,6 +626,7 @@ namespace anvil
   // frame) or a checkpoint's.
   void Simulator::start_run(const bool resume, const std::string &resume_from)
   {
+    const auto start = std::chrono::steady_clock::now();
     // Each rank times its own sections: a TimerOutput over the communicator
     // would put a barrier before and after every section of every step
     // (about a dozen a step), which turns each section's imbalance into
@@ -720,6 +721,10 @@ namespace anvil
     const bool rebalancing =
       parameters.rebalance_interval > 0 && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1;
     solids->time_elements(rebalancing);
+    timing_from_step = step_number + 16;
+    // (What a new partition costs: about what this start did.)
+    startup_seconds = Utilities::MPI::max(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mpi_communicator);
     if (rebalancing && (!resume || !(loop.next_rebalance > time)))
       loop.next_rebalance = time + parameters.rebalance_interval;
   }
@@ -839,6 +844,8 @@ namespace anvil
         while (output.next_checkpoint <= time + clock.eps)
           output.next_checkpoint += parameters.checkpoint_interval;
       }
+    if (parameters.rebalance_interval > 0 && step_number == timing_from_step)
+      solids->reset_timing();
     if (parameters.rebalance_interval > 0 && Utilities::MPI::n_mpi_processes(mpi_communicator) > 1 &&
         time >= loop.next_rebalance - clock.eps && time < parameters.end_time - clock.eps && !output.stop_requested)
       {

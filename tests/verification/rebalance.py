@@ -1,8 +1,9 @@
 """Partitioning anew during the run ('Rebalance interval'): the trajectory
 does not depend on it, bit for bit.
 
-With 'Rebalance threshold = 1' every check partitions anew (no two
-processes ever spend exactly the same time), each element weighed by its
+With 'Rebalance threshold = 1' and 'Rebalance when it pays = false' every
+check partitions anew (no two processes ever spend exactly the same time),
+each element weighed by its
 group's measured time per element on its process; the run goes on from a
 checkpoint on the new partition. Checked:
 1. The coarse RC column (concrete damaged plasticity, bond-slip bars, the
@@ -33,7 +34,8 @@ column_end = ["--set", "Simulation/End time=0.012", "--set", "Simulation/Output 
 
 
 def rebalancing(interval, threshold=1.0):
-    return ["--set", f"Simulation/Rebalance interval={interval}", "--set", f"Simulation/Rebalance threshold={threshold}"]
+    return ["--set", f"Simulation/Rebalance interval={interval}", "--set", f"Simulation/Rebalance threshold={threshold}",
+            "--set", "Simulation/Rebalance when it pays=false"]
 
 
 def run(scene, name, np, extra=()):

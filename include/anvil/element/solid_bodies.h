@@ -82,6 +82,11 @@ namespace anvil::Element
       for (auto &g : element_groups)
         g.time_elements(on);
     }
+    void reset_timing()
+    {
+      for (auto &g : element_groups)
+        g.reset_timing();
+    }
 
   private:
     /** What erosion.csv tells of each owned element of group @p g eroded

@@ -61,5 +61,6 @@ namespace anvil
     /** 'Rebalance interval' (s; 0: never) and 'Rebalance threshold'. */
     double rebalance_interval  = 0;
     double rebalance_threshold = 1.1;
+    bool   rebalance_when_it_pays = true;
   };
 } // namespace anvil

@@ -460,6 +460,14 @@ namespace anvil
     /** The weights of a rebalance (per element id; empty: by element kind,
         partition_by_cost()) and the wall clock's start of the whole run. */
     std::vector<unsigned long>                   partition_weights;
+    /** The step from which the elements' times count: the first steps
+        after a start or a new partition run slower (pages touched for the
+        first time, cold caches) wherever their elements are. */
+    unsigned int timing_from_step = 0;
+    /** The wall time this run's start took (setup, checkpoint, first
+        forces), the slowest process's: a new partition costs about as
+        much ('Rebalance when it pays'). Units: s. */
+    double startup_seconds = 0;
     std::optional<std::chrono::steady_clock::time_point> run_wall_start;
   };
 
