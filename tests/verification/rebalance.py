@@ -79,7 +79,7 @@ def largest_difference(x, y):
 plain, _ = run(column, "column", 2, column_end)
 moved, out = run(column, "column_rebalanced", 2, column_end + rebalancing(0.002))
 lines = [l for l in out.splitlines() if "rebalance at t =" in l]
-counts = [l.split("elements per process:")[1].strip(" )") for l in out.splitlines() if "new partition" in l]
+counts = [l.split("elements per process:")[1].strip(" )") for l in out.splitlines() if "elements per process:" in l]
 print("  elements per process after each rebalance: " + "; ".join(counts))
 c.check_true(f"column: {len(lines)} new partitions of 5 checks", len(lines) == 5 and len(counts) == 5)
 histories = sorted(n for n in os.listdir(plain) if n.endswith(".csv") and n != "summary.csv")
