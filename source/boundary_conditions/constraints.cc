@@ -294,21 +294,17 @@ namespace anvil
     std::vector<std::uint64_t> held_keys;
     for (const unsigned int i : constrained_dofs)
       held_keys.push_back(key[i]);
-    std::vector<double> held(ar.is_loading() ? 0 : 2 * held_keys.size());
-    for (unsigned int k = 0; k < held.size() / 2; ++k)
-      {
-        held[2 * k]     = constrained_reaction[k];
-        held[2 * k + 1] = constrained_velocity_old[k];
-      }
     // (A stage may hold dofs the run before it did not: they start
     // without a reaction, as at setup.)
-    ar.keyed("held dofs", held_keys, 2, held, true);
-    if (ar.is_loading())
-      for (unsigned int k = 0; k < held_keys.size(); ++k)
-        {
-          constrained_reaction[k]     = held[2 * k];
-          constrained_velocity_old[k] = held[2 * k + 1];
-        }
+    ar.keyed_items(
+      "held dofs",
+      held_keys,
+      2,
+      [&](const std::size_t k, RecordCursor &io) {
+        io(constrained_reaction[k]);
+        io(constrained_velocity_old[k]);
+      },
+      true);
     if (mass_damping > 0)
       {
         if (damping_force_old.size() != key.size())

@@ -544,19 +544,11 @@ namespace anvil::Contact
             keys.push_back(i);
         else
           keys = pairs[p]->own_nodes;
-        std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
-        if (!ar.is_loading())
-          for (std::size_t k = 0; k < keys.size(); ++k)
-            for (unsigned int a = 0; a < arrays.size(); ++a)
-              for (unsigned int d = 0; d < 3; ++d)
-                values[record * k + 3 * a + d] = (*arrays[a])[3 * keys[k] + d];
         const std::string table = "pair '" + pairs[p]->name + "'";
-        ar.keyed(table, keys, record, values);
-        if (ar.is_loading())
-          for (std::size_t k = 0; k < keys.size(); ++k)
-            for (unsigned int a = 0; a < arrays.size(); ++a)
-              for (unsigned int d = 0; d < 3; ++d)
-                (*arrays[a])[3 * keys[k] + d] = values[record * k + 3 * a + d];
+        ar.keyed_items(table, keys, record, [&](const std::size_t k, RecordCursor &io) {
+          for (auto *a : arrays)
+            io(*a, 3 * keys[k], 3);
+        });
         std::string stream;
         if (!ar.is_loading())
           {

@@ -240,9 +240,8 @@ namespace anvil::Contact
       }
     else
       keys = own_nodes;
-    std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
-    const auto transfer = [&](const unsigned int i, double *at, const bool save) {
-      RecordCursor io(at, save);
+    ar.keyed_items("nodes", keys, record, [&](const std::size_t k, RecordCursor &io) {
+      const auto i = keys[k];
       for (unsigned int s = 0; s < 2; ++s)
         {
           io(partner[s][i]);
@@ -254,14 +253,7 @@ namespace anvil::Contact
         }
       if (n_previous > 0)
         io(previous_position, 3 * i, 3);
-    };
-    if (!ar.is_loading())
-      for (std::size_t k = 0; k < keys.size(); ++k)
-        transfer(keys[k], values.data() + record * k, true);
-    ar.keyed("nodes", keys, record, values);
-    if (ar.is_loading())
-      for (std::size_t k = 0; k < keys.size(); ++k)
-        transfer(keys[k], values.data() + record * k, false);
+    });
     // The analytic pass's lists of the own nodes with a spring or a
     // gradient force (its old values are made anew from these at the
     // next step): every rank's joined, each rank taking its own.

@@ -590,10 +590,8 @@ namespace anvil::Element
           keys.push_back(global_id[e]);
           elements.push_back(e);
         }
-    std::vector<double> values(ar.is_loading() ? 0 : record * keys.size());
-    // Element e's record from (save) or into (load) values, from @p at.
-    const auto transfer = [&](const unsigned int e, double *at, const bool save) {
-      RecordCursor io(at, save);
+    ar.keyed_items(table, keys, record, [&](const std::size_t item, RecordCursor &io) {
+      const unsigned int e = elements[item];
       if (erodes)
         io(alive[e]);
       for (unsigned int q = 0; q < n_qp; ++q)
@@ -613,14 +611,7 @@ namespace anvil::Element
       if (bulk_viscosity())
         io(bulk_pressure, std::size_t(e) * n_qp, n_qp);
       io(shape_factor[e]);
-    };
-    if (!ar.is_loading())
-      for (std::size_t i = 0; i < elements.size(); ++i)
-        transfer(elements[i], values.data() + record * i, true);
-    ar.keyed(table, keys, record, values);
-    if (ar.is_loading())
-      for (std::size_t i = 0; i < elements.size(); ++i)
-        transfer(elements[i], values.data() + record * i, false);
+    });
   }
 
 

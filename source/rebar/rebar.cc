@@ -305,8 +305,17 @@ namespace anvil::Rebar
     for (auto *v : per_element)
       element_record += width(v->size(), n_elements);
 
-    const auto transfer_node = [&](const std::size_t i, double *at, const bool save) {
-      RecordCursor io(at, save);
+    // Writing: the own nodes and the elements whose first node is own;
+    // reading: all of them (every process holds the arrays whole).
+    std::vector<std::uint64_t> nodes, own_elements;
+    for (std::size_t i = 0; i < n_nodes; ++i)
+      if (ar.is_loading() || (i < host_owned.size() && host_owned[i]))
+        nodes.push_back(i);
+    for (std::size_t k = 0; k < n_elements; ++k)
+      if (ar.is_loading() || host_owned[elements[k][0]])
+        own_elements.push_back(k);
+    ar.keyed_items(table + " nodes", nodes, node_record, [&](const std::size_t j, RecordCursor &io) {
+      const std::size_t i = nodes[j];
       for (auto *v : per_node)
         {
           const unsigned int w = width(v->size(), n_nodes);
@@ -317,41 +326,14 @@ namespace anvil::Rebar
       if (!tangent.empty())
         for (unsigned int d = 0; d < 3; ++d)
           io(tangent[i][d]);
-    };
-    const auto transfer_element = [&](const std::size_t k, double *at, const bool save) {
-      RecordCursor io(at, save);
+    });
+    ar.keyed_items(table + " elements", own_elements, element_record, [&](const std::size_t j, RecordCursor &io) {
+      const std::size_t k = own_elements[j];
       for (auto *v : per_element)
         {
           const unsigned int w = width(v->size(), n_elements);
           io(*v, w * k, w);
         }
-    };
-    // Writing: the own nodes and the elements whose first node is own;
-    // reading: all of them (every process holds the arrays whole).
-    std::vector<std::uint64_t> nodes, own_elements;
-    for (std::size_t i = 0; i < n_nodes; ++i)
-      if (ar.is_loading() || (i < host_owned.size() && host_owned[i]))
-        nodes.push_back(i);
-    for (std::size_t k = 0; k < n_elements; ++k)
-      if (ar.is_loading() || host_owned[elements[k][0]])
-        own_elements.push_back(k);
-    std::vector<double> node_values(ar.is_loading() ? 0 : node_record * nodes.size());
-    std::vector<double> element_values(ar.is_loading() ? 0 : element_record * own_elements.size());
-    if (!ar.is_loading())
-      {
-        for (std::size_t j = 0; j < nodes.size(); ++j)
-          transfer_node(nodes[j], node_values.data() + node_record * j, true);
-        for (std::size_t j = 0; j < own_elements.size(); ++j)
-          transfer_element(own_elements[j], element_values.data() + element_record * j, true);
-      }
-    ar.keyed(table + " nodes", nodes, node_record, node_values);
-    ar.keyed(table + " elements", own_elements, element_record, element_values);
-    if (ar.is_loading())
-      {
-        for (std::size_t j = 0; j < nodes.size(); ++j)
-          transfer_node(nodes[j], node_values.data() + node_record * j, false);
-        for (std::size_t j = 0; j < own_elements.size(); ++j)
-          transfer_element(own_elements[j], element_values.data() + element_record * j, false);
-      }
+    });
   }
 } // namespace anvil::Rebar

@@ -121,20 +121,12 @@ namespace anvil
   {
     // The nodal state by dof key (the owned dofs of any partition).
     {
-      VectorType *const   nodal[] = {&position, &velocity, &force, &mass, &balance.good_position,
-                                     &balance.good_velocity};
-      constexpr unsigned  n_nodal = std::size(nodal);
-      const unsigned int  n       = position.locally_owned_size();
-      std::vector<double> values(ar.is_loading() ? 0 : n_nodal * n);
-      if (!ar.is_loading())
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int k = 0; k < n_nodal; ++k)
-            values[n_nodal * i + k] = nodal[k]->local_element(i);
-      ar.keyed("nodes", dof_key, n_nodal, values);
-      if (ar.is_loading())
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int k = 0; k < n_nodal; ++k)
-            nodal[k]->local_element(i) = values[n_nodal * i + k];
+      VectorType *const nodal[] = {&position, &velocity, &force, &mass, &balance.good_position,
+                                   &balance.good_velocity};
+      ar.keyed_items("nodes", dof_key, std::size(nodal), [&](const std::size_t i, RecordCursor &io) {
+        for (auto *v : nodal)
+          io(v->local_element(i));
+      });
     }
     ar &balance.good_time;
     ar &energies &balance.initial_energy &balance.balance_error &balance.energy_scale &critical_dt &balance.pending_step_change

@@ -158,6 +158,33 @@ namespace anvil
         }
     }
 
+    /** keyed() with each item's values moved by @p transfer(k,
+        RecordCursor &) between its arrays and its record (k: the item's
+        index in @p keys): out of the arrays when writing, into them when
+        reading. */
+    template <typename Transfer>
+    void keyed_items(const std::string                &name,
+                     const std::vector<std::uint64_t> &keys,
+                     const unsigned int                n_values,
+                     const Transfer                   &transfer,
+                     const bool                        may_be_new = false)
+    {
+      std::vector<double> values(loading ? 0 : std::size_t(n_values) * keys.size());
+      if (!loading)
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          {
+            RecordCursor out(values.data() + n_values * k, true);
+            transfer(k, out);
+          }
+      keyed(name, keys, n_values, values, may_be_new);
+      if (loading)
+        for (std::size_t k = 0; k < keys.size(); ++k)
+          {
+            RecordCursor in(values.data() + n_values * k, false);
+            transfer(k, in);
+          }
+    }
+
     /** A set of keys that several processes may each hold part of (or
         the same keys): writing, this process's; reading, the sorted union
         of every process's. */
