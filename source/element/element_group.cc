@@ -619,12 +619,9 @@ namespace anvil::Element
   {
     const unsigned int n  = n_elements();
     const bool         ul = formulation == Formulation::updated_lagrangian;
-    timing_chunk          = !on ? 0 :
-                            ul && integration == Integration::one_point ? W :
-                            ul && integration == Integration::full      ? 1 :
-                                                                          std::max(1u, n);
-    timing_whole = on && timing_chunk == std::max(1u, n) && !(ul && integration == Integration::one_point) &&
-                   !(ul && integration == Integration::full);
+    // (The updated Lagrangian loops are the batched ones, which time their
+    // batches or elements; the total Lagrangian ones are timed whole.)
+    timing_chunk = !on ? 0 : !ul ? std::max(1u, n) : integration == Integration::one_point ? W : 1;
     chunk_seconds.assign(on && n > 0 ? (n + timing_chunk - 1) / timing_chunk : 0, 0.);
   }
 
@@ -691,7 +688,7 @@ namespace anvil::Element
   {
     refresh_shape = (n_calls++ % shape_refresh_interval == 0);
     // (A group whose loop does not time its chunks is timed whole.)
-    if (timing_whole)
+    if (timing_chunk > 0 && formulation != Formulation::updated_lagrangian)
       {
         auto       mark = std::chrono::steady_clock::now();
         const auto r    = dispatch_loop(x, v, dt, force);

@@ -108,6 +108,27 @@ namespace anvil
   } // namespace
 
 
+  namespace
+  {
+    /** A checkpoint's info: the number of processes that wrote it (its
+        files state.0.bin, ...; -1: no checkpoint) and its state layout
+        (1 where unstated). */
+    std::pair<int, int> read_info(const std::string &dir)
+    {
+      int n = -1, layout = 1;
+      if (std::ifstream info(dir + "/info"); info)
+        {
+          std::string word;
+          info >> word >> n;
+          for (std::string key, value; info >> key >> value;)
+            if (key == "layout")
+              layout = std::atoi(value.c_str());
+        }
+      return {n, layout};
+    }
+  } // namespace
+
+
   RecordMismatch::RecordMismatch(const std::string &what)
     : std::runtime_error(what)
   {}
@@ -292,15 +313,7 @@ namespace anvil
   // load its state wrongly.
   void Simulator::check_checkpoint(const std::string &dir) const
   {
-    int n = -1, layout = 1;
-    if (std::ifstream info(dir + "/info"); info)
-      {
-        std::string word;
-        info >> word >> n;
-        for (std::string key, value; info >> key >> value;)
-          if (key == "layout")
-            layout = std::atoi(value.c_str());
-      }
+    const auto [n, layout] = read_info(dir);
     if (n < 0)
       throw InputError(parameters.scene_file + ": --resume: no checkpoint in '" + dir +
                        "' (set 'Checkpoint interval' or stop a run with SIGTERM to write one)");
@@ -312,17 +325,6 @@ namespace anvil
   }
 
 
-  // The number of processes that wrote the checkpoint in @p dir (its
-  // files state.0.bin ...).
-  unsigned int Simulator::checkpoint_processes(const std::string &dir) const
-  {
-    int           n = 0;
-    std::ifstream info(dir + "/info");
-    std::string   word;
-    info >> word >> n;
-    return std::max(n, 0);
-  }
-
 
   // Every process reads every file of the checkpoint: the stream of the
   // writers' first process (what all processes hold alike) and the keyed
@@ -331,7 +333,7 @@ namespace anvil
   void Simulator::load_checkpoint(const std::string &directory, const bool new_stage)
   {
     const unsigned int        rank    = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int        writers = checkpoint_processes(directory);
+    const unsigned int        writers = std::max(read_info(directory).first, 0);
     std::string               stream, refused, damage;
     std::vector<KeyedTables>  parts;
     for (unsigned int w = 0; w < writers && refused.empty(); ++w)

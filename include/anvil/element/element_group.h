@@ -557,7 +557,6 @@ namespace anvil::Element
     /** time_elements(): the elements a chunk of the measured time covers
         (0: not measured) and each chunk's seconds. */
     unsigned int        timing_chunk = 0;
-    bool                timing_whole = false;
     std::vector<double> chunk_seconds;
     /** The loop this group's kind runs (compute_internal_forces()). */
     LoopResult dispatch_loop(const double *x, const double *v, double dt, double *force);

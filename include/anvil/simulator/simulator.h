@@ -239,8 +239,6 @@ namespace anvil
     /** The checkpoint in @p directory exists and is of this build's
         layout; InputError otherwise. */
     void check_checkpoint(const std::string &directory) const;
-    /** How many processes wrote the checkpoint in @p directory. */
-    unsigned int checkpoint_processes(const std::string &directory) const;
     /** For --resume: the output directory must hold a checkpoint; nothing
         is deleted, the run's file list is read back. */
     void resume_output_directory();
