@@ -12,6 +12,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <iomanip>
+#include <map>
 
 namespace anvil::Contact
 {
@@ -90,9 +91,11 @@ namespace anvil::Contact
                       local.push_back(K);
                       local.push_back(V);
                       local.push_back(element_id(cell->active_cell_index()));
+                      for (unsigned int k = 0; k < 4; ++k)
+                        local.push_back(scene_vertex_index(face->vertex_index(flip ? cyclic[3 - k] : cyclic[k])));
                     }
             for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
-              for (std::size_t i = 0; i < part.size(); i += 19)
+              for (std::size_t i = 0; i < part.size(); i += 23)
                 {
                   Contact::SegmentDescription d;
                   for (unsigned int k = 0; k < 4; ++k)
@@ -102,10 +105,22 @@ namespace anvil::Contact
                   d.bulk_modulus = part[i + 16];
                   d.volume       = part[i + 17];
                   d.element   = static_cast<unsigned long>(part[i + 18]);
+                  for (unsigned int k = 0; k < 4; ++k)
+                    d.vertex[k] = static_cast<std::uint64_t>(part[i + 19 + k]);
                   segments[s].push_back(d);
                 }
           }
         pairs[p]->setup(segments[0], segments[1]);
+        {
+          std::map<unsigned long, std::uint64_t> vertex_of;
+          for (unsigned int s = 0; s < 2; ++s)
+            for (const auto &d : segments[s])
+              for (unsigned int k = 0; k < 4; ++k)
+                vertex_of[d.x_dof[k]] = d.vertex[k];
+          pairs[p]->node_keys.clear();
+          for (const auto dof : pairs[p]->node_dofs())
+            pairs[p]->node_keys.push_back(vertex_of.at(dof));
+        }
         for (unsigned int s = 0; s < 2; ++s)
           {
             pairs[p]->set_rigid(s, bodies[body[s]].is_rigid());
@@ -151,6 +166,12 @@ namespace anvil::Contact
                            "': the surface has hanging nodes of a 'Refinement region', which kinematic "
                            "contact does not take yet: set 'Algorithm = penalty' there, or keep the "
                            "region's boundary off the contact surface");
+        if (pairs[p]->kinematic() && adapts_during_run() &&
+            (bodies[body[0]].local_refinement_levels() > 0 || bodies[body[1]].local_refinement_levels() > 0))
+          throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
+                           "': kinematic contact does not take a body refined during the run "
+                           "('Simulation/Adapt interval' with a 'Refinement region'): set "
+                           "'Algorithm = penalty' there");
         pairs[p]->set_node_masses(m);
         positions[p].resize(3 * dofs.size());
         if (pairs[p]->needs_velocities())
@@ -538,17 +559,26 @@ namespace anvil::Contact
           if (a->size() == 3 * n_nodes && n_nodes > 0)
             arrays.push_back(a);
         const unsigned int         record = 3 * arrays.size();
-        std::vector<std::uint64_t> keys;
+        std::vector<std::uint64_t> index, keys;
         if (ar.is_loading())
           for (unsigned int i = 0; i < n_nodes; ++i)
-            keys.push_back(i);
+            index.push_back(i);
         else
-          keys = pairs[p]->own_nodes;
+          index = pairs[p]->own_nodes;
+        for (const auto i : index)
+          keys.push_back(pairs[p]->node_keys[i]);
         const std::string table = "pair '" + pairs[p]->name + "'";
-        ar.keyed_items(table, keys, record, [&](const std::size_t k, RecordCursor &io) {
-          for (auto *a : arrays)
-            io(*a, 3 * keys[k], 3);
-        });
+        // (Onto a refined mesh, the new nodes start from what the next
+        // evaluation finds.)
+        ar.keyed_items(
+          table,
+          keys,
+          record,
+          [&](const std::size_t k, RecordCursor &io) {
+            for (auto *a : arrays)
+              io(*a, 3 * index[k], 3);
+          },
+          ar.element_transfer() != nullptr);
         std::string stream;
         if (!ar.is_loading())
           {

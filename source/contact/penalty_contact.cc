@@ -223,25 +223,38 @@ namespace anvil::Contact
   // owner's, by the node's index in the pair.
   void PenaltyContact::serialize(StateArchive &ar)
   {
+    // (Onto a mesh refined or coarsened since the checkpoint, the segments
+    // are new: every one starts active, the erosion is applied anew by the
+    // driver, and no node keeps its partner segment.)
+    const bool adapted = ar.is_loading() && ar.element_transfer() != nullptr;
     for (auto &surf : surface)
-      ar &surf.active;
+      {
+        std::vector<bool> active = surf.active;
+        ar &active;
+        if (!adapted)
+          surf.active = active;
+      }
     ar &spring_work;
     std::uint64_t n_previous = previous_position.size();
     ar &n_previous;
     const unsigned int n_nodes    = dofs.size();
     const bool         friction   = !tangential_force[0].empty();
     const unsigned int record     = 2 * (6 + (friction ? 3 : 0)) + (n_previous > 0 ? 3 : 0);
-    std::vector<std::uint64_t> keys;
+    if (adapted && n_previous > 0)
+      n_previous = 3 * n_nodes;
+    std::vector<std::uint64_t> index, keys;
     if (ar.is_loading())
       {
         previous_position.assign(n_previous, 0.);
         for (unsigned int i = 0; i < n_nodes; ++i)
-          keys.push_back(i);
+          index.push_back(i);
       }
     else
-      keys = own_nodes;
+      index = own_nodes;
+    for (const auto i : index)
+      keys.push_back(node_keys[i]);
     ar.keyed_items("nodes", keys, record, [&](const std::size_t k, RecordCursor &io) {
-      const auto i = keys[k];
+      const auto i = index[k];
       for (unsigned int s = 0; s < 2; ++s)
         {
           io(partner[s][i]);
@@ -253,20 +266,37 @@ namespace anvil::Contact
         }
       if (n_previous > 0)
         io(previous_position, 3 * i, 3);
-    });
+    }, adapted);
+    if (adapted)
+      for (auto &p : partner)
+        std::fill(p.begin(), p.end(), -1);
     // The analytic pass's lists of the own nodes with a spring or a
     // gradient force (its old values are made anew from these at the
     // next step): every rank's joined, each rank taking its own.
     for (auto [list, table] : {std::make_pair(&springs_now, "springs"), std::make_pair(&gradients_now, "gradients")})
       {
-        std::vector<std::uint64_t> joined(list->begin(), list->end());
+        std::vector<std::uint64_t> joined;
+        for (const auto i : *list)
+          joined.push_back(node_keys[i]);
         ar.key_union(table, joined);
         if (ar.is_loading())
           {
+            // (By key back to the node's index: the keys sorted with it.)
+            std::vector<std::pair<std::uint64_t, unsigned int>> by_key;
+            for (unsigned int i = 0; i < n_nodes; ++i)
+              by_key.emplace_back(node_keys[i], i);
+            std::sort(by_key.begin(), by_key.end());
             list->clear();
-            for (const auto i : joined)
-              if (owned.empty() || owned[i])
-                list->push_back(i);
+            for (const auto key : joined)
+              {
+                const auto at = std::lower_bound(by_key.begin(), by_key.end(), std::make_pair(key, 0u));
+                if (at == by_key.end() || at->first != key)
+                  continue;
+                const unsigned int i = at->second;
+                if (owned.empty() || owned[i])
+                  list->push_back(i);
+              }
+            std::sort(list->begin(), list->end());
           }
       }
     if (ar.is_loading())

@@ -590,7 +590,7 @@ namespace anvil::Element
           keys.push_back(global_id[e]);
           elements.push_back(e);
         }
-    ar.keyed_items(table, keys, record, [&](const std::size_t item, RecordCursor &io) {
+    const auto io_element = [&](const std::size_t item, RecordCursor &io) {
       const unsigned int e = elements[item];
       if (erodes)
         io(alive[e]);
@@ -611,7 +611,102 @@ namespace anvil::Element
       if (bulk_viscosity())
         io(bulk_pressure, std::size_t(e) * n_qp, n_qp);
       io(shape_factor[e]);
-    });
+    };
+    if (!ar.is_loading() || ar.element_transfer() == nullptr)
+      {
+        ar.keyed_items(table, keys, record, io_element);
+        return;
+      }
+
+    // Loading onto a mesh refined or coarsened since the checkpoint
+    // (doc/adaptivity.md, "Refinement during the run"): each new element's
+    // record is made from its sources' records. A child takes its parent's
+    // state at the parent's point in the child's octant (one-point: the
+    // parent's), a coarsened parent at each point the mean of the child in
+    // that point's octant (one-point: the children's mean by volume); the
+    // energies split and add by volume; hourglass state starts anew.
+    const ElementTransfer     &sources = *ar.element_transfer();
+    std::vector<std::uint64_t> wanted;
+    for (const auto key : keys)
+      if (const auto s = sources.find(key); s != sources.end())
+        for (const auto &source : s->second)
+          wanted.push_back(source.id);
+      else
+        wanted.push_back(key);
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    std::vector<double> old_values;
+    ar.keyed(table, wanted, record, old_values);
+    const auto old_record = [&](const std::uint64_t id) {
+      return old_values.data() + record * (std::lower_bound(wanted.begin(), wanted.end(), id) - wanted.begin());
+    };
+    const unsigned int first_point = erodes ? 1 : 0;
+    const unsigned int per_point   = 6 + n_hist;
+    const unsigned int after_points = first_point + per_point * n_qp;
+    const unsigned int energies     = after_points + (modes ? 12 : 0) + (resistance ? 12 : 0);
+    std::vector<double> values(record);
+    for (std::size_t item = 0; item < keys.size(); ++item)
+      {
+        const auto s = sources.find(keys[item]);
+        if (s == sources.end() || s->second.front().kind == ElementSource::same)
+          std::copy_n(old_record(s == sources.end() ? keys[item] : s->second.front().id), record, values.begin());
+        else
+          {
+            // (The elastic energy of the stresses at the points, with the
+            // material's undamaged moduli: what averaging takes out.)
+            const double K = material.bulk_modulus(), G = 0.75 * (material.wave_modulus() - K);
+            const auto   elastic = [&](const double *sigma) {
+              const double p  = (sigma[0] + sigma[1] + sigma[2]) / 3.;
+              double       ss = 0;
+              for (unsigned int d = 0; d < 3; ++d)
+                ss += (sigma[d] - p) * (sigma[d] - p) + 2. * sigma[3 + d] * sigma[3 + d];
+              return 0.5 * p * p / K + (G > 0 ? 0.25 * ss / G : 0.);
+            };
+            double old_elastic = 0;
+            std::fill(values.begin(), values.end(), 0.);
+            if (erodes)
+              values[0] = 1;
+            for (const auto &source : s->second)
+              {
+                const double *r = old_record(source.id);
+                if (erodes)
+                  values[0] = std::min(values[0], r[0]);
+                for (unsigned int q = 0; q < n_qp; ++q)
+                  {
+                    // (Where the new element's point q takes from this
+                    // source, from which of its points, with what weight.)
+                    const auto add = [&](const unsigned int from, const double w) {
+                      old_elastic += w * elastic(r + first_point + per_point * from) / n_qp;
+                      for (unsigned int k = 0; k < per_point; ++k)
+                        values[first_point + per_point * q + k] += w * r[first_point + per_point * from + k];
+                      if (bulk_viscosity())
+                        values[energies + 2 + q] += w * r[energies + 2 + from];
+                    };
+                    if (n_qp == 1)
+                      add(0, source.intensive);
+                    else if (source.kind == ElementSource::child)
+                      add(source.octant, 1.);
+                    else if (source.octant == q)
+                      for (unsigned int from = 0; from < n_qp; ++from)
+                        add(from, 1. / n_qp);
+                  }
+                values[energies] += source.extensive * r[energies];
+                values[energies + 1] += source.extensive * r[energies + 1];
+                values[record - 1] += source.intensive * r[record - 1];
+              }
+            double new_elastic = 0;
+            for (unsigned int q = 0; q < n_qp; ++q)
+              new_elastic += elastic(values.data() + first_point + per_point * q) / n_qp;
+            const unsigned int e = elements[item];
+            const double       change = reference_volume[e] * (new_elastic - old_elastic);
+            values[energies] += change;
+            if (element_is_owned(e))
+              adapted_energy += change;
+          }
+        RecordCursor in(values.data(), false);
+        io_element(item, in);
+      }
+    refresh_shape = true;
   }
 
 

@@ -172,6 +172,21 @@ namespace anvil
                       "is in the region; neighbours differ by one level at "
                       "most, so a ring of elements outside it may be refined "
                       "too. Units: none.");
+    prm.declare_entry("Indicator",
+                      "",
+                      Patterns::Anything(),
+                      "During the run ('Simulation/Adapt interval'), also refine "
+                      "the elements where this history variable of the body's "
+                      "material (a name its output shows: damage, "
+                      "effective_plastic_strain, strain_rate, ...) exceeds "
+                      "'Indicator threshold' at any point. Empty: none. Units: "
+                      "none.");
+    prm.declare_entry("Indicator threshold",
+                      "0",
+                      Patterns::Double(),
+                      "The value of 'Indicator' above which an element is "
+                      "refined (and below which it may be coarsened). Units: "
+                      "those of the variable.");
     prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
   }
@@ -229,15 +244,39 @@ namespace anvil
       return false;
     if (has_refinement_box && inside(centroid, refinement_lower, refinement_upper))
       return true;
-    if (refinement_near.empty())
+    return within_near_distance(centroid, near_lower, near_upper);
+  }
+
+
+  bool Body::within_near_distance(const dealii::Point<3> &point,
+                                  const dealii::Point<3> &near_lower,
+                                  const dealii::Point<3> &near_upper) const
+  {
+    if (refinement_near.empty() || !(near_lower[0] <= near_upper[0]))
       return false;
     double d2 = 0;
     for (unsigned int d = 0; d < 3; ++d)
       {
-        const double out = std::max({near_lower[d] - centroid[d], 0., centroid[d] - near_upper[d]});
+        const double out = std::max({near_lower[d] - point[d], 0., point[d] - near_upper[d]});
         d2 += out * out;
       }
     return d2 <= refinement_distance * refinement_distance;
+  }
+
+
+  bool Body::wants_refinement(const dealii::Point<3> &reference,
+                              const dealii::Point<3> &current,
+                              const dealii::Point<3> &near_lower,
+                              const dealii::Point<3> &near_upper,
+                              const double            indicator) const
+  {
+    if (refinement_levels == 0)
+      return false;
+    if (has_refinement_box && inside(reference, refinement_lower, refinement_upper))
+      return true;
+    if (indicator_index >= 0 && indicator > indicator_threshold)
+      return true;
+    return within_near_distance(current, near_lower, near_upper);
   }
 
 
@@ -332,7 +371,26 @@ namespace anvil
     if (refinement_near == name)
       throw InputError("subsection 'Body " + name + "/Refinement region': 'Near body' names the body itself "
                        "(use the box)");
-    if (has_refinement_box || !refinement_near.empty())
+    const std::string indicator = dealii::Utilities::trim(prm.get("Indicator"));
+    indicator_index             = -1;
+    indicator_threshold         = prm.get_double("Indicator threshold");
+    if (!indicator.empty())
+      {
+        const auto names = material->history_names();
+        const auto at    = std::find(names.begin(), names.end(), indicator);
+        if (at == names.end())
+          {
+            std::string known;
+            for (const auto &n : names)
+              if (!n.empty())
+                known += (known.empty() ? "" : ", ") + n;
+            throw InputError("subsection 'Body " + name + "/Refinement region': 'Indicator' names '" +
+                             printable_excerpt(indicator) + "', which the body's material does not have (its " +
+                             "variables: " + (known.empty() ? std::string("none") : known) + ")");
+          }
+        indicator_index = at - names.begin();
+      }
+    if (has_refinement_box || !refinement_near.empty() || indicator_index >= 0)
       refinement_levels = prm.get_integer("Levels");
     prm.leave_subsection();
     if (refinement_levels > 0 && material->is_rigid())

@@ -24,12 +24,12 @@ namespace anvil::Postprocess
           record_output("energy.csv");
           file.open(get_output_directory() + "/energy.csv");
           file << "time,kinetic,internal,hourglass,viscous,damping,contact,friction,eroded,removed,bond,"
-                  "step_change,external_work,total,balance_error\n";
+                  "step_change,adaptation,external_work,total,balance_error\n";
         }
       const auto &e = get_energies();
       file << std::setprecision(12) << t << ',' << e.kinetic << ',' << e.internal << ',' << e.hourglass << ','
            << e.viscous << ',' << e.damping << ',' << e.contact << ',' << e.friction << ',' << e.eroded << ','
-           << e.removed << ',' << e.bond << ',' << e.step_change << ',' << e.external_work << ',' << e.total()
+           << e.removed << ',' << e.bond << ',' << e.step_change << ',' << e.adaptation << ',' << e.external_work << ',' << e.total()
            << ',' << get_balance_error() << '\n';
     }
 

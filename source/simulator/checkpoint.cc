@@ -144,10 +144,13 @@ namespace anvil
     {
       VectorType *const nodal[] = {&position, &velocity, &force, &mass, &balance.good_position,
                                    &balance.good_velocity};
-      ar.keyed_items("nodes", dof_key, std::size(nodal), [&](const std::size_t i, RecordCursor &io) {
-        for (auto *v : nodal)
-          io(v->local_element(i));
-      });
+      if (ar.is_loading() && ar.element_transfer() != nullptr)
+        load_transferred_nodes(ar);
+      else
+        ar.keyed_items("nodes", dof_key, std::size(nodal), [&](const std::size_t i, RecordCursor &io) {
+          for (auto *v : nodal)
+            io(v->local_element(i));
+        });
     }
     ar &balance.good_time;
     ar &energies &balance.initial_energy &balance.balance_error &balance.energy_scale &critical_dt &balance.pending_step_change
@@ -270,6 +273,8 @@ namespace anvil
         info << "processes " << Utilities::MPI::n_mpi_processes(mpi_communicator) << "\ntime "
              << std::setprecision(17) << time << "\nstep " << step_number << "\nlayout "
              << checkpoint_layout << "\n";
+        if (!adapt_rounds.empty())
+          write_adaptation(dir + ".new", mesh_rounds);
         write_atomically(dir + ".new/info", info.str());
         // The previous checkpoint goes only once the new one is complete.
         std::error_code ec;
@@ -386,6 +391,8 @@ namespace anvil
                        " (run the scene again from its start, or from an intact checkpoint)");
 
     StateArchive              ar(stream, merged);
+    if (transferring)
+      ar.set_transfer(element_sources);
     std::vector<unsigned int> counts;
     std::vector<long>         lengths;
     std::vector<std::string>  names;
@@ -419,6 +426,11 @@ namespace anvil
     position.update_ghost_values();
     velocity.update_ghost_values();
     mass.update_ghost_values();
+    if (transferring)
+      {
+        const KeyedTable *old_nodes = ar.table("nodes");
+        finish_transfer(old_nodes != nullptr ? *old_nodes : KeyedTable());
+      }
     if (new_stage)
       loop.stage_start = time;
     if (parameters.duration > 0)

@@ -481,6 +481,20 @@ namespace anvil
                         "checkpoint on the new partition, bit for bit the same "
                         "trajectory; 0: never (the partition of the start, by element "
                         "kind). Units: s.");
+      prm.declare_entry("Adapt interval",
+                        "0",
+                        Patterns::Double(0.),
+                        "Simulated time between refinements and coarsenings of the "
+                        "bodies with a 'Refinement region' during the run: an element "
+                        "is halved (to the region's 'Levels') where its body's criteria "
+                        "hold in the current state (the box, by reference centroid; "
+                        "within 'Distance' of the 'Near body''s current box, by current "
+                        "centroid; its 'Indicator' above the threshold), and eight "
+                        "children are joined again where they hold for none of them. "
+                        "The state moves onto the new elements and nodes (the energy "
+                        "this changes: energy.csv, 'adaptation'; doc/adaptivity.md) and "
+                        "the run goes on from a checkpoint of the new mesh; 0: the mesh "
+                        "of the start throughout. Units: s.");
       prm.declare_entry("Rebalance threshold",
                         "1.1",
                         Patterns::Double(1.),
@@ -896,6 +910,7 @@ namespace anvil
         parameters.checkpoint_interval      = prm.get_double("Checkpoint interval");
         parameters.rebalance_interval       = prm.get_double("Rebalance interval");
         parameters.rebalance_threshold      = prm.get_double("Rebalance threshold");
+        parameters.adapt_interval           = prm.get_double("Adapt interval");
         parameters.rebalance_when_it_pays   = prm.get_bool("Rebalance when it pays");
         parameters.checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
         parameters.checkpoint_at_end        = prm.get_bool("Checkpoint at end");

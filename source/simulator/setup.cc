@@ -157,6 +157,7 @@ namespace anvil
       std::vector<CellData<3>>().swap(cells);
       boundary = SubCellData();
       refine_regions(serial);
+      replay_adaptation(serial);
       partition_by_cost(serial);
       const auto description =
         TriangulationDescription::Utilities::create_description_from_triangulation(serial, mpi_communicator);

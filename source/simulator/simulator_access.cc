@@ -91,6 +91,12 @@ namespace anvil
     return simulator.hanging.is_hanging(i) ? simulator.hanging_mass[i] : simulator.mass.local_element(i);
   }
 
+  bool SimulatorAccess::adapts_during_run() const
+  {
+    return simulator.parameters.adapt_interval > 0;
+  }
+
+
   unsigned int SimulatorAccess::scene_vertex_index(const unsigned int v) const
   {
     return simulator.scene_vertex[v];

@@ -638,6 +638,14 @@ namespace anvil
                                           TimerOutput::wall_times);
     {
       TimerOutput::Scope t(*timer, "setup");
+      // (The mesh of a run that goes on from a checkpoint has its rounds
+      // of refinement and coarsening.)
+      if (resume)
+        read_adaptation(parameters.output_directory + "/checkpoint");
+      else if (!resume_from.empty())
+        read_adaptation(resume_from);
+      else
+        adapt_rounds.clear(), state_rounds = 0;
       setup();
       if (resume)
         resume_output_directory();
@@ -727,6 +735,8 @@ namespace anvil
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mpi_communicator);
     if (rebalancing && (!resume || !(loop.next_rebalance > time)))
       loop.next_rebalance = time + parameters.rebalance_interval;
+    if (parameters.adapt_interval > 0 && (!resume || !(loop.next_adapt > time)))
+      loop.next_adapt = time + parameters.adapt_interval;
   }
 
 
@@ -852,6 +862,13 @@ namespace anvil
         while (loop.next_rebalance <= time + clock.eps)
           loop.next_rebalance += parameters.rebalance_interval;
         check_balance();
+      }
+    if (parameters.adapt_interval > 0 && time >= loop.next_adapt - clock.eps &&
+        time < parameters.end_time - clock.eps && !output.stop_requested)
+      {
+        while (loop.next_adapt <= time + clock.eps)
+          loop.next_adapt += parameters.adapt_interval;
+        check_adaptivity();
       }
     if (output.checkpoint_due || output.stop_requested)
       {

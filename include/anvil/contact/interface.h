@@ -57,6 +57,8 @@ namespace anvil::Contact
     double volume;
     /** Scene-wide id of the segment's element. */
     unsigned long element = 0;
+    /** The scene vertices of the four nodes (checkpoint keys). */
+    std::array<std::uint64_t, 4> vertex = {{0, 0, 0, 0}};
   };
 
   /** What a contact evaluation reports. */
@@ -212,13 +214,19 @@ namespace anvil::Contact
     }
 
     /** Everything a step changes (checkpoints): what every rank holds
-        alike in the stream, each node's state (by its index in the pair)
-        in keyed tables, written by the rank in own_nodes. */
+        alike in the stream, each node's state (by its scene vertex,
+        node_keys) in keyed tables, written by the rank in own_nodes. A
+        load onto a mesh refined or coarsened since
+        (StateArchive::element_transfer()) starts the new nodes afresh and
+        forgets the segments the nodes were last paired with. */
     virtual void serialize(StateArchive &ar) = 0;
 
     /** The pair's nodes (indices into node_dofs()) whose dofs this rank
         owns, set before the first step. */
     std::vector<std::uint64_t> own_nodes;
+    /** Each node's key in a checkpoint (its scene vertex), by its index
+        in node_dofs(). */
+    std::vector<std::uint64_t> node_keys;
 
     std::string name;
     std::string first_body, second_body;

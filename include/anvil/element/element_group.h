@@ -305,6 +305,13 @@ namespace anvil::Element
     {
       return hourglass_energy[e];
     }
+    /** The change of the own elements' elastic energy that a load onto a
+        refined or coarsened mesh made (StateArchive::element_transfer()),
+        booked in their internal energy. Units: J. */
+    double transfer_energy() const
+    {
+      return adapted_energy;
+    }
     double element_reference_volume(const unsigned int e) const
     {
       return reference_volume[e];
@@ -429,6 +436,7 @@ namespace anvil::Element
       return compression * (rho * L * (b2 * b2 * L * trD * trD - b1 * c * trD));
     }
     const unsigned int              n_qp;
+    double                          adapted_energy = 0;
     const unsigned int              n_hist;
     /** The history's split (MaterialModel::Interface::n_hot_history()):
         the first n_hot values of every point in history, stored by batch

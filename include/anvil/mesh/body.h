@@ -95,7 +95,31 @@ namespace anvil
       return refinement_near;
     }
 
+    /** Whether an element is wanted finer during the run ('Adapt
+        interval'): its reference centroid @p reference in the box, its
+        current centroid @p current within the distance of the 'Near
+        body''s current box @p near_lower, @p near_upper, or its largest
+        'Indicator' value @p indicator above the threshold. */
+    bool wants_refinement(const dealii::Point<3> &reference,
+                          const dealii::Point<3> &current,
+                          const dealii::Point<3> &near_lower,
+                          const dealii::Point<3> &near_upper,
+                          double                  indicator) const;
+
+    /** The history variable whose value refines an element during the
+        run (its index in the material's history_names(); -1: none). */
+    int refinement_indicator() const
+    {
+      return indicator_index;
+    }
+
   private:
+    /** Whether @p point lies within 'Distance' of the box @p near_lower,
+        @p near_upper (false: no 'Near body', or an empty box). */
+    bool within_near_distance(const dealii::Point<3> &point,
+                              const dealii::Point<3> &near_lower,
+                              const dealii::Point<3> &near_upper) const;
+
     /** Where the mesh comes from (the plugin 'Source' names). */
     std::unique_ptr<MeshSources::Interface> mesh_source;
     dealii::Tensor<1, 3>                    offset;
@@ -112,5 +136,7 @@ namespace anvil
     dealii::Point<3>     refinement_lower, refinement_upper;
     std::string          refinement_near;
     double               refinement_distance = 0;
+    int                  indicator_index     = -1;
+    double               indicator_threshold = 0;
   };
 } // namespace anvil

@@ -60,6 +60,10 @@ namespace anvil
     std::string partitioner = "hierarchical";
     /** 'Rebalance interval' (s; 0: never) and 'Rebalance threshold'. */
     double rebalance_interval  = 0;
+    /** 'Adapt interval': simulated time between refinements and
+        coarsenings of the bodies by their 'Refinement region' (0: the
+        mesh of the start throughout). */
+    double adapt_interval      = 0;
     double rebalance_threshold = 1.1;
     bool   rebalance_when_it_pays = true;
   };

@@ -39,11 +39,17 @@ namespace anvil
         ('Inactive bodies': their kinetic energy, and the energy of their
         contact springs, when they were removed). */
     double removed       = 0;
+    /** The energy that refinement and coarsening during the run took out
+        of the motion and the stress they moved onto the new elements
+        ('Adapt interval', doc/adaptivity.md): the kinetic energy of the
+        interpolated velocities and the elastic energy of the averaged
+        stresses against the old mesh's; negative: energy created. */
+    double adaptation    = 0;
     double external_work = 0;
     double total() const
     {
       return kinetic + internal + hourglass + viscous + damping + contact + friction + eroded +
-             removed + bond + step_change;
+             removed + bond + step_change + adaptation;
     }
   };
 

@@ -32,6 +32,7 @@
 #include <anvil/utilities/state_archive.h>
 
 #include <chrono>
+#include <map>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -57,6 +58,7 @@ namespace anvil
   {
     std::vector<unsigned long> weights;
   };
+
 
 
   /** A stage of a scene (doc/user_guide.md, "Stages"): its name and the
@@ -177,7 +179,7 @@ namespace anvil
         their masters (nothing without local refinement). */
     void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 11;
+    static constexpr int checkpoint_layout = 12;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
@@ -258,6 +260,8 @@ namespace anvil
       double stage_start = 0;
       /** The next check of the processes' balance ('Rebalance interval'). */
       double next_rebalance = 0;
+      /** The next refinement and coarsening ('Adapt interval'). */
+      double next_adapt = 0;
     };
     LoopState loop;
     void   zero_forces();
@@ -467,6 +471,47 @@ namespace anvil
         much ('Rebalance when it pays'). Units: s. */
     double startup_seconds = 0;
     std::optional<std::chrono::steady_clock::time_point> run_wall_start;
+
+    // Refinement and coarsening during the run (source/simulator/adaptivity.cc)
+
+    /** 'Adapt interval': each element's wish (finer, coarser) from its
+        body's 'Refinement region' in the current state; where any element
+        changes, the round is recorded, a checkpoint written and a
+        RebalanceRequest thrown: the run goes on on the new mesh. */
+    void check_adaptivity();
+    /** The rounds of refinement and coarsening of this run so far, each
+        the element ids (of the mesh before it) to refine (id + 1) and to
+        coarsen (-(id + 1)), and how many of them the state of the
+        checkpoint to resume from was computed on (read_adaptation()). */
+    std::vector<std::vector<std::int64_t>> adapt_rounds;
+    unsigned int                           state_rounds = 0;
+    /** The rounds of the checkpoint in @p directory ('adaptation'), for
+        the mesh of a run that resumes from it. */
+    void read_adaptation(const std::string &directory);
+    /** The rounds into @p directory (a checkpoint's), the state's count
+        @p state_count. */
+    void write_adaptation(const std::string &directory, unsigned int state_count) const;
+    /** The rounds applied to the scene's serial mesh (after the regions);
+        where the state to load is of the mesh before the last round, the
+        sources of the new nodes and elements are kept (below). */
+    void replay_adaptation(dealii::Triangulation<3> &serial);
+    /** A resume onto the mesh of one more round: each new node's (by
+        scene vertex) motion from the old nodes around it; each new
+        element's sources. */
+    bool                                                                   transferring = false;
+    std::map<unsigned int, std::vector<std::pair<unsigned int, double>>> motion_sources;
+    std::shared_ptr<ElementTransfer>                                       element_sources;
+    /** Loading: the nodes' table of the mesh before onto this one. */
+    void load_transferred_nodes(StateArchive &ar);
+    /** After a transferred load (@p old_nodes: the checkpoint's table of
+        the nodes of the mesh before): the contact surfaces' erosion, the
+        forces of the new mesh, the energy the transfer changed. */
+    void finish_transfer(const KeyedTable &old_nodes);
+    /** The rounds the current mesh was built with, and the coarsenings of
+        the last round that deal.II refused (the level difference of
+        neighbours), by element id: not asked for again on this mesh. */
+    unsigned int            mesh_rounds = 0;
+    std::set<unsigned long> coarsening_refused;
   };
 
   /**

@@ -75,6 +75,9 @@ namespace anvil
     /** Whether the owned or ghost dof with local index @p i hangs (follows
         the coarse face or edge of a refinement interface). */
     bool         is_hanging(unsigned int i) const;
+    /** Whether the mesh is refined and coarsened during the run ('Adapt
+        interval'). */
+    bool         adapts_during_run() const;
     /** The lumped mass of the owned dof @p i as a contact spring sees it:
         the node's own, also where it hangs (the update gives a hanging
         node's mass to its masters). */

@@ -41,6 +41,31 @@ namespace anvil
   };
   using KeyedTables = std::map<std::string, KeyedTable>;
 
+  /** Where an element of a mesh refined or coarsened during the run takes
+      its state from (doc/adaptivity.md, "Refinement during the run"): an
+      element of the mesh before, with the weight of its intensive values
+      (stress, history: 1 for a child, the child's share of the volume
+      for a coarsened parent's children) and of its extensive ones
+      (energies: the child's share, 1), and the octant (child index) that
+      pairs the quadrature points of the two. */
+  struct ElementSource
+  {
+    std::uint64_t id;
+    double        intensive;
+    double        extensive;
+    unsigned int  octant;
+    /** The new element is the same cell (its record is copied), a child
+        of the source, or the parent of the sources. */
+    enum Kind : unsigned char
+    {
+      same,
+      child,
+      parent
+    } kind;
+  };
+  using ElementTransfer = std::map<std::uint64_t, std::vector<ElementSource>>;
+
+
   /**
    * One item's record in a keyed table, read or written value by value:
    * saving, each call copies a value of the item's arrays into the record;
@@ -98,7 +123,8 @@ namespace anvil
     StateArchive nested(const std::string &prefix, std::string data = {}) const
     {
       StateArchive a;
-      a.loading = loading;
+      a.loading  = loading;
+      a.transfer = transfer;
       a.buffer  = std::move(data);
       a.tables  = tables;
       a.prefix  = this->prefix + prefix + "/";
@@ -216,6 +242,23 @@ namespace anvil
     {
       return loading;
     }
+    /** Loading onto a mesh refined or coarsened since the checkpoint: the
+        sources of its new elements (doc/adaptivity.md); the tables keyed
+        by node then hold no items for the new nodes. */
+    void set_transfer(std::shared_ptr<const ElementTransfer> t)
+    {
+      transfer = std::move(t);
+    }
+    const ElementTransfer *element_transfer() const
+    {
+      return transfer.get();
+    }
+    /** The merged table @p name (reading), or none. */
+    const KeyedTable *table(const std::string &name) const
+    {
+      const auto t = tables->find(prefix + name);
+      return t == tables->end() ? nullptr : &t->second;
+    }
 
     const std::string &data() const
     {
@@ -241,6 +284,7 @@ namespace anvil
     std::size_t                  position = 0;
     std::shared_ptr<KeyedTables> tables;
     std::string                  prefix;
+    std::shared_ptr<const ElementTransfer> transfer;
 
     void bytes(void *p, const std::size_t n)
     {
