@@ -694,6 +694,12 @@ namespace anvil::Element
                 values[energies + 1] += source.extensive * r[energies + 1];
                 values[record - 1] += source.intensive * r[record - 1];
               }
+            // (What the element's geometry set at setup stays its own: a
+            // child's crack band is its own length, so that the crack
+            // opening kappa h of the parent is kept across its children.)
+            for (const unsigned int k : material.geometric_history())
+              for (unsigned int q = 0; q < n_qp; ++q)
+                values[first_point + per_point * q + 6 + k] = history_variable(elements[item], q, k);
             double new_elastic = 0;
             for (unsigned int q = 0; q < n_qp; ++q)
               new_elastic += elastic(values.data() + first_point + per_point * q) / n_qp;

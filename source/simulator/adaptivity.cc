@@ -399,8 +399,8 @@ namespace anvil
 
 
   // After the load: the forces of time n on the new mesh, from its state
-  // (an evaluation at dt = 0, as at the start: no increment of stress,
-  // history or friction), so that the step's energy identity holds on it;
+  // (an evaluation at dt = 0, as at the start, the elements' state copied
+  // back after it: no increment of stress, history or friction), so that the step's energy identity holds on it;
   // the kinetic energy the interpolation changed (the scheme's K^n = 1/2 v
   // (M v + dt F), on the old mesh's whole table and on the new mesh), the
   // elastic energy the averaging took out and the springs' energy of the
@@ -438,8 +438,13 @@ namespace anvil
       return e;
     };
     const double before_forces = held();
+    std::vector<Element::ElementGroup::Snapshot> states;
+    for (const auto &g : solids->groups())
+      states.push_back(g.snapshot());
     zero_forces();
     critical_dt = compute_internal_forces(0.);
+    for (unsigned int g = 0; g < states.size(); ++g)
+      solids->groups()[g].restore(std::move(states[g]));
     apply_contact(0.);
     condense_forces();
     const double springs = held() - before_forces;

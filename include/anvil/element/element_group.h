@@ -305,6 +305,33 @@ namespace anvil::Element
     {
       return hourglass_energy[e];
     }
+    /** What a step changes in the elements, copied out (snapshot()) and
+        back (restore()): an evaluation of the forces that must leave the
+        state as it was (the forces of a mesh refined during the run, at
+        dt = 0, where a viscous regularisation would otherwise return the
+        stress to the rate-independent surface). */
+    struct Snapshot
+    {
+      std::vector<double>        stresses, history, cold_history, modes, resistance, internal, hourglass, bulk;
+      std::vector<unsigned char> alive;
+    };
+    Snapshot snapshot() const
+    {
+      return {stresses,        history,          cold_history,  hourglass_modes, hourglass_resistance,
+              internal_energy, hourglass_energy, bulk_pressure, alive};
+    }
+    void restore(Snapshot &&s)
+    {
+      stresses             = std::move(s.stresses);
+      history              = std::move(s.history);
+      cold_history         = std::move(s.cold_history);
+      hourglass_modes      = std::move(s.modes);
+      hourglass_resistance = std::move(s.resistance);
+      internal_energy      = std::move(s.internal);
+      hourglass_energy     = std::move(s.hourglass);
+      bulk_pressure        = std::move(s.bulk);
+      alive                = std::move(s.alive);
+    }
     /** The change of the own elements' elastic energy that a load onto a
         refined or coarsened mesh made (StateArchive::element_transfer()),
         booked in their internal energy. Units: J. */

@@ -268,6 +268,10 @@ namespace anvil::MaterialModel
     }
     std::vector<std::string> history_names() const override;
     double history_value(const double *history, unsigned int k) const override;
+    std::vector<unsigned int> geometric_history() const override
+    {
+      return {i_length, i_strength_factor};
+    }
     int dissipation_index() const override
     {
       return i_dissipation;

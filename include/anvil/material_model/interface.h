@@ -131,6 +131,16 @@ namespace anvil
         return history[k];
       }
 
+      /** The history variables that the element's geometry and place set
+          at setup (a crack band's characteristic length, an imperfection's
+          strength factor): an element made by refinement or coarsening
+          during the run keeps its own, where it takes the rest of its
+          history from the elements before it. */
+      virtual std::vector<unsigned int> geometric_history() const
+      {
+        return {};
+      }
+
       /** Index of the history variable holding the energy dissipated per
           unit volume (plastic work, damage), or -1. Units: J/m^3. */
       virtual int dissipation_index() const
