@@ -41,6 +41,9 @@ cases = [
      ["out_of_range.prm", "Poisson's ratio", "0.7", "-1...0.5"]),
     ("missing_mesh", dict(mesh="    set Source = file\n    set File name = no_such_mesh.msh", nu="0.3", extra=""), 2,
      ["missing_mesh.prm", "no_such_mesh.msh", "cannot be opened"]),
+    ("unknown_indicator", dict(mesh="", nu="0.3", extra="  subsection Refinement region\n"
+                               "    set Indicator = damage\n  end"), 2,
+     ["Refinement region", "Indicator", "damage", "its variables: none"]),
 ]
 plastic = """  subsection Material
     set Model = plastic kinematic
