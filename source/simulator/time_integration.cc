@@ -454,7 +454,10 @@ namespace anvil
   void Simulator::print_cost()
   {
     timer = std::make_unique<TimerOutput>(pcout, TimerOutput::never, TimerOutput::wall_times);
+    const auto setup_start = std::chrono::steady_clock::now();
     setup();
+    const double setup_seconds = Utilities::MPI::max(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count(), mpi_communicator);
     position.update_ghost_values();
     velocity.update_ghost_values();
     zero_forces();
@@ -499,6 +502,26 @@ namespace anvil
           << "  (the step shrinks as elements deform, materials that soften or yield cost more than "
              "in their elastic range, and 'End kinetic energy fraction' may end the run earlier)"
           << std::endl;
+    // Refinement during the run: the mesh lies between the start's and
+    // every element of the refined bodies at its finest level.
+    if (parameters.adapt_interval > 0)
+      {
+        double finest = 0;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int levels = bodies[cell->material_id()].local_refinement_levels();
+              finest += std::pow(8., std::max(0, int(levels) - cell->level()));
+            }
+        finest = Utilities::MPI::sum(finest, mpi_communicator);
+        pcout << "  'Adapt interval' " << parameters.adapt_interval << " s: between " << (unsigned long)elements
+              << " elements (the start) and " << (unsigned long)finest
+              << " (every element of the refined bodies at its finest level, the step that of their "
+                 "smallest elements); each round that changes the mesh costs about a start of the run (" << setup_seconds
+              << " s here: the scene built anew, the checkpoint written and read), at most "
+              << (unsigned long)std::max(0., std::ceil(parameters.end_time / parameters.adapt_interval) - 1.) << " rounds"
+              << std::endl;
+      }
   }
 
 
