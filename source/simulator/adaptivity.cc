@@ -12,15 +12,16 @@
  *
  * - a node the round kept keeps its motion; a new node takes the motion
  *   of the element it was made in, interpolated (trilinear) at its place;
- *   every node takes the acceleration of the old mesh there, F = M_new a,
- *   so the first step after the round moves the new mesh as the old one
- *   would have moved;
  * - an element the round kept keeps its record; a child takes its parent's
  *   stresses and history (at the parent's point in its octant), a joined
  *   parent the mean of its children; energies split and add by volume,
- *   hourglass state starts anew (ElementGroup::serialize);
- * - the kinetic energy the interpolation changed and the elastic energy
- *   the averaging took out are booked as 'adaptation' in energy.csv.
+ *   hourglass state starts anew, what the geometry set stays the new
+ *   element's own (ElementGroup::serialize);
+ * - the forces of time n are made on the new mesh from that state (an
+ *   evaluation at dt = 0 that leaves the state as it was);
+ * - the kinetic energy the round changed, the elastic energy the averaging
+ *   took out and the springs the new contact nodes found are booked as
+ *   'adaptation' in energy.csv.
  */
 #include <anvil/simulator/simulator.h>
 #include <anvil/utilities/input_error.h>
