@@ -305,20 +305,23 @@ namespace anvil::Element
     {
       return hourglass_energy[e];
     }
-    /** What a step changes in the elements, copied out (snapshot()) and
-        back (restore()): an evaluation of the forces that must leave the
-        state as it was (the forces of a mesh refined during the run, at
-        dt = 0, where a viscous regularisation would otherwise return the
-        stress to the rate-independent surface). */
+    /** What a step changes in the material state of the elements, copied
+        out (snapshot()) and back (restore()): an evaluation of the forces
+        that must leave it as it was (the forces of a mesh refined during
+        the run, at dt = 0, where a viscous regularisation would otherwise
+        return the stress to the rate-independent surface). The bulk
+        viscosity's pressure is not part of it: the evaluation's (zero at
+        dt = 0) is the one its forces hold, and the next step's viscous
+        work starts from it. */
     struct Snapshot
     {
-      std::vector<double>        stresses, history, cold_history, modes, resistance, internal, hourglass, bulk;
+      std::vector<double>        stresses, history, cold_history, modes, resistance, internal, hourglass;
       std::vector<unsigned char> alive;
     };
     Snapshot snapshot() const
     {
-      return {stresses,        history,          cold_history,  hourglass_modes, hourglass_resistance,
-              internal_energy, hourglass_energy, bulk_pressure, alive};
+      return {stresses,        history,         cold_history, hourglass_modes, hourglass_resistance,
+              internal_energy, hourglass_energy, alive};
     }
     void restore(Snapshot &&s)
     {
@@ -329,7 +332,6 @@ namespace anvil::Element
       hourglass_resistance = std::move(s.resistance);
       internal_energy      = std::move(s.internal);
       hourglass_energy     = std::move(s.hourglass);
-      bulk_pressure        = std::move(s.bulk);
       alive                = std::move(s.alive);
     }
     /** The change of the own elements' elastic energy that a load onto a
