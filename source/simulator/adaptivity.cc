@@ -56,6 +56,9 @@ namespace anvil
   // @sect3{The check}
   void Simulator::check_adaptivity()
   {
+    // (Nothing to check where no body asks for finer elements.)
+    if (std::none_of(bodies.begin(), bodies.end(), [](const Body &b) { return b.local_refinement_levels() > 0; }))
+      return;
     const unsigned int n_bodies = bodies.size();
     // Each body's current box (for 'Near body').
     std::vector<double> lower(3 * n_bodies, 1e300), upper(3 * n_bodies, 1e300);

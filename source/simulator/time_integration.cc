@@ -700,6 +700,11 @@ namespace anvil
                       ", " + Element::to_string(b.hourglass) + " hourglass control" :
                       std::string())
                 << "\n";
+        if (parameters.adapt_interval > 0 &&
+            std::none_of(bodies.begin(), bodies.end(), [](const Body &b) { return b.local_refinement_levels() > 0; }))
+          pcout << "Warning: " << parameters.scene_file
+                << ": 'Simulation/Adapt interval' is set, but no body has a 'Refinement region' with criteria and "
+                   "'Levels' > 0: the mesh stays that of the start\n";
         pcout << "  the step computes: " << step_contents() << "\n";
         pcout << "  results in " << parameters.output_directory << "/" << std::endl;
       }
