@@ -644,6 +644,16 @@ namespace anvil::Element
     const unsigned int per_point   = 6 + n_hist;
     const unsigned int after_points = first_point + per_point * n_qp;
     const unsigned int energies     = after_points + (modes ? 12 : 0) + (resistance ? 12 : 0);
+    // (The elastic energy density of a point's stresses, with the
+    // material's undamaged moduli: what averaging takes out.)
+    const double K = material.bulk_modulus(), G = 0.75 * (material.wave_modulus() - K);
+    const auto   elastic = [&](const double *sigma) {
+      const double p  = (sigma[0] + sigma[1] + sigma[2]) / 3.;
+      double       ss = 0;
+      for (unsigned int d = 0; d < 3; ++d)
+        ss += (sigma[d] - p) * (sigma[d] - p) + 2. * sigma[3 + d] * sigma[3 + d];
+      return 0.5 * p * p / K + (G > 0 ? 0.25 * ss / G : 0.);
+    };
     std::vector<double> values(record);
     for (std::size_t item = 0; item < keys.size(); ++item)
       {
@@ -652,16 +662,6 @@ namespace anvil::Element
           std::copy_n(old_record(s == sources.end() ? keys[item] : s->second.front().id), record, values.begin());
         else
           {
-            // (The elastic energy of the stresses at the points, with the
-            // material's undamaged moduli: what averaging takes out.)
-            const double K = material.bulk_modulus(), G = 0.75 * (material.wave_modulus() - K);
-            const auto   elastic = [&](const double *sigma) {
-              const double p  = (sigma[0] + sigma[1] + sigma[2]) / 3.;
-              double       ss = 0;
-              for (unsigned int d = 0; d < 3; ++d)
-                ss += (sigma[d] - p) * (sigma[d] - p) + 2. * sigma[3 + d] * sigma[3 + d];
-              return 0.5 * p * p / K + (G > 0 ? 0.25 * ss / G : 0.);
-            };
             double old_elastic = 0;
             std::fill(values.begin(), values.end(), 0.);
             if (erodes)

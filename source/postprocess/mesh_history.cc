@@ -22,12 +22,16 @@ namespace anvil::Postprocess
     {
       if (!adapts_during_run())
         return;
-      constexpr unsigned int levels = 5; // 'Levels' is at most 4
-      std::vector<double>    count(levels, 0.);
-      for (const auto &cell : get_triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          count[std::min<unsigned int>(cell->level(), levels - 1)] += 1;
-      dealii::Utilities::MPI::sum(count, get_mpi_communicator(), count);
+      // (A round builds the scene anew, this postprocessor with it: the
+      // mesh it sees does not change, so it is counted once.)
+      if (count.empty())
+        {
+          count.assign(levels, 0.);
+          for (const auto &cell : get_triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              count[std::min<unsigned int>(cell->level(), levels - 1)] += 1;
+          dealii::Utilities::MPI::sum(count, get_mpi_communicator(), count);
+        }
       if (!is_root())
         return;
       if (!file.is_open())
@@ -54,7 +58,9 @@ namespace anvil::Postprocess
     }
 
   private:
-    HistoryFile file;
+    static constexpr unsigned int levels = 5; // 'Levels' is at most 4
+    HistoryFile                   file;
+    std::vector<double>           count;
   };
 
   ANVIL_REGISTER_POSTPROCESSOR(MeshHistory,

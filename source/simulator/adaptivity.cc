@@ -108,8 +108,12 @@ namespace anvil
     // The wishes: + (id + 1) finer, - (id + 1) coarser. A child asks to be
     // joined where its parent would not be refined: the parent's centroid
     // (reference, and moved by the child's motion) fails the criteria and
-    // the child's own indicator is below the threshold; all eight must ask.
-    std::vector<std::int64_t> wishes;
+    // the child's own indicator is below the threshold. A join counts only
+    // where all eight siblings ask for it: each asks under its parent's
+    // cell id, which the siblings know from the distributed mesh's
+    // hierarchy, whichever process owns them.
+    std::vector<std::int64_t>                         finer_ids;
+    std::vector<std::pair<std::string, std::int64_t>> joins;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -127,42 +131,28 @@ namespace anvil
           const auto value    = indicator[cell->active_cell_index()];
           const auto level    = static_cast<unsigned int>(cell->level());
           if (level < body.local_refinement_levels() && body.wants_refinement(cell->center(), current, lo, hi, value))
-            wishes.push_back(id);
+            finer_ids.push_back(id);
           else if (level > 0 && !coarsening_refused.count(static_cast<unsigned long>(id - 1)))
             {
               const Point<3> parent_reference = cell->parent()->center();
               const Point<3> parent_current   = parent_reference + (current - cell->center());
               if (!body.wants_refinement(parent_reference, parent_current, lo, hi, value))
-                wishes.push_back(-id);
+                joins.emplace_back(cell->parent()->id().to_string(), -id);
             }
         }
-    // (A coarsening counts only where all eight siblings ask for it; the
-    // parents are told apart by their first child's id, which the
-    // siblings learn from the distributed mesh's hierarchy.)
+    std::vector<std::int64_t> wishes;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, finer_ids))
+      wishes.insert(wishes.end(), part.begin(), part.end());
     {
-      std::vector<std::pair<std::string, std::int64_t>> own;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            const auto id = static_cast<std::int64_t>(element_id[cell->active_cell_index()]) + 1;
-            if (std::find(wishes.begin(), wishes.end(), -id) != wishes.end())
-              own.emplace_back(cell->parent()->id().to_string(), -id);
-          }
       std::map<std::string, std::vector<std::int64_t>> by_parent;
-      for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, own))
+      for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, joins))
         for (const auto &[parent, wish] : part)
           by_parent[parent].push_back(wish);
-      std::vector<std::int64_t> all;
-      for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, wishes))
-        for (const auto w : part)
-          if (w > 0)
-            all.push_back(w);
       for (const auto &[parent, children] : by_parent)
         if (children.size() == GeometryInfo<3>::max_children_per_cell)
-          all.insert(all.end(), children.begin(), children.end());
-      std::sort(all.begin(), all.end());
-      wishes.swap(all);
+          wishes.insert(wishes.end(), children.begin(), children.end());
     }
+    std::sort(wishes.begin(), wishes.end());
     if (wishes.empty())
       return;
 
