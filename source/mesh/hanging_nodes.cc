@@ -36,6 +36,12 @@ namespace anvil
             else
               l.entries.emplace_back(partitioner.global_to_local(j), w);
           }
+        // The masters in the order of their scene keys: deal.II lists them
+        // by global dof index, which depends on the partition, and the
+        // weighted sums below must add in the same order on any number
+        // of processes.
+        std::sort(l.entries.begin(), l.entries.end(),
+                  [&](const auto &a, const auto &b) { return key[a.first] < key[b.first]; });
         AssertThrow(line.inhomogeneity == 0., dealii::ExcMessage("hanging-node constraints are homogeneous"));
         AssertThrow(visible || l.dof >= partitioner.locally_owned_size(),
                     dealii::ExcMessage("an owned hanging node has a master outside the ghost layer"));
