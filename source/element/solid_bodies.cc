@@ -78,7 +78,7 @@ namespace anvil::Element
             }
           const Body        &body = bodies[cell->material_id()];
           const unsigned int slot =
-            (body.integration_at(cell->center()) == body.integration ? 0 : 1);
+            (body.integration_of(cell) == body.integration ? 0 : 1);
           element_groups[group_of_body[cell->material_id()][slot]].add_element(
             node,
             X,

@@ -124,7 +124,8 @@ namespace anvil
                       "",
                       Patterns::Anything(),
                       "Lower corner of a box (reference coordinates) whose "
-                      "elements (by their centroid) use full 2x2x2 integration "
+                      "elements (by the centroid of the element as built: its "
+                      "children keep its integration) use full 2x2x2 integration "
                       "in a body of one-point elements: where a concentrated "
                       "load (a contact under a small nose, a support) would "
                       "excite hourglass modes of one-point elements. Empty: "

@@ -264,7 +264,7 @@ namespace anvil
         const Body &body = bodies[cell->material_id()];
         weight[cell->active_cell_index()] =
           body.is_rigid() ? 100 :
-          body.integration_at(cell->center()) == Element::Integration::full ? full_integration_weight :
+          body.integration_of(cell) == Element::Integration::full ? full_integration_weight :
                                                                               1000;
       }
     if (partition_weights.size() == weight.size())

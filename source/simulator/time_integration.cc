@@ -693,11 +693,27 @@ namespace anvil
               << "  " << Utilities::MPI::n_mpi_processes(mpi_communicator)
               << " MPI process(es), " << triangulation.n_global_active_cells()
               << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
-        for (const auto &b : bodies)
-          pcout << "  body '" << b.name << "': " << to_string(b.formulation) << ", "
-                << Element::to_string(b.integration) << " integration"
-                << (b.integration == Element::Integration::one_point ?
-                      ", " + Element::to_string(b.hourglass) + " hourglass control" :
+        // (The elements of a 'Full integration region': those of a
+        // one-point body's group of eight-point elements.)
+        std::vector<double> full(bodies.size(), 0.);
+        for (unsigned int g = 0; g < solids->groups().size(); ++g)
+          {
+            const auto        &group = solids->groups()[g];
+            const unsigned int b     = solids->group_body()[g];
+            if (group.n_quadrature_points() == 8 && bodies[b].integration == Element::Integration::one_point)
+              for (unsigned int e = 0; e < group.n_elements(); ++e)
+                full[b] += group.element_is_owned(e) ? 1. : 0.;
+          }
+        Utilities::MPI::sum(full, mpi_communicator, full);
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          pcout << "  body '" << bodies[b].name << "': " << to_string(bodies[b].formulation) << ", "
+                << Element::to_string(bodies[b].integration) << " integration"
+                << (bodies[b].integration == Element::Integration::one_point ?
+                      ", " + Element::to_string(bodies[b].hourglass) + " hourglass control" :
+                      std::string())
+                << (bodies[b].has_full_integration_region() ?
+                      "; " + std::to_string(static_cast<unsigned long>(full[b])) +
+                        " element(s) fully integrated ('Full integration region')" :
                       std::string())
                 << "\n";
         if (parameters.adapt_interval > 0 &&

@@ -46,6 +46,23 @@ c.check("near the plate within 0.3 m: elements", n, 177, 0)
 code, n, err = check("two_levels", {R + "Upper corner": "0.25, 2, 2", R + "Levels": 2})
 c.check("two levels in x < 0.25 m, the next layer refined once by the one-level rule: elements", n, 1185, 0)
 
+# A 'Full integration region' whose boundary x = 0.15 m cuts the first
+# layer of refined elements: an element keeps the integration of the
+# element it was made from (its centroid, x = 0.375, in the box; x = 0.125
+# not), so 16 coarse elements give 128 fully integrated children, beside
+# the 32 unrefined elements beyond x = 0.5 m: 160; by the children's own
+# centroids (x = 0.1875, 0.3125, 0.4375) it would be 192 + 32.
+# A child then never changes group when a round of refinement makes it.
+prm = test_scene(args, "tests/input/refinement_region.prm", "full_region",
+                 {"Body block/Full integration region/Lower corner": "0.15, -1, -1",
+                  "Body block/Full integration region/Upper corner": "2, 2, 2",
+                  "Body block/Refinement region/Upper corner": "0.5, 2, 2",
+                  "Simulation/End time": 1e-7}, "")
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+m = re.search(r"body 'block':.*; (\d+) element\(s\) fully integrated", out)
+c.check("full integration region cutting refined elements: fully integrated elements (those of the 16 "
+        "coarse ones inside)", int(m.group(1)) if m else -1, 16 * 8 + 2 * 16, 0)
+
 for name, overrides, text, what in (
         ("unknown_near", {**no_box, R + "Near body": "wall", R + "Distance": 0.1}, "", "is not in 'Bodies'"),
         ("no_distance", {**no_box, R + "Near body": "plate"}, "", "needs a 'Distance'"),

@@ -68,6 +68,21 @@ namespace anvil
         full inside the 'Full integration region', the body's elsewhere. */
     Element::Integration integration_at(const dealii::Point<3> &centroid) const;
 
+    /** Integration of the element @p cell of this body's mesh: that of
+        the element it was made from as the body was built (its level-0
+        ancestor, by that one's centroid), so that refinement and
+        coarsening never move an element from one group to the other. */
+    template <class CellIterator>
+    Element::Integration integration_of(const CellIterator &cell) const
+    {
+      if (cell->level() == 0)
+        return integration_at(cell->center());
+      auto ancestor = cell->parent();
+      while (ancestor->level() > 0)
+        ancestor = ancestor->parent();
+      return integration_at(ancestor->center());
+    }
+
     /** Whether some elements of this body may be fully integrated while
         the body's integration is one point. */
     bool has_full_integration_region() const
