@@ -258,7 +258,8 @@ namespace anvil::RigidBody
 
 
   // Rigid bodies have advanced to n+1 already: the row reports the centre
-  // of time n and the velocity at n, V^{n+1/2} - dt/2 F/M.
+  // of time n and the velocity at n, V^{n+1/2} - dt/2 F/M in the
+  // directions it is free to move in.
   void RigidBodies::write_history(const double t, const double dt)
   {
     const auto &bodies = get_bodies();
@@ -275,7 +276,13 @@ namespace anvil::RigidBody
       if (b.is_rigid())
         {
           const auto        &m = b.rigid;
-          const Tensor<1, 3> v = m.free ? m.velocity - 0.5 * dt / m.mass * m.last_force : m.velocity;
+          // (A constrained direction keeps its given velocity: the force
+          // there is held by the constraint's reaction.)
+          Tensor<1, 3> v = m.velocity;
+          if (m.free)
+            for (unsigned int d = 0; d < 3; ++d)
+              if (!m.constrained[d])
+                v[d] -= 0.5 * dt / m.mass * m.last_force[d];
           files[r] << std::setprecision(12) << t << ',' << m.previous_centre[0] << ','
                    << m.previous_centre[1] << ',' << m.previous_centre[2] << ',' << v[0] << ',' << v[1]
                    << ',' << v[2] << ',' << m.last_force[0] << ',' << m.last_force[1] << ','
