@@ -1001,8 +1001,10 @@ namespace anvil::Deck
               w.set("Erosion", "true");
             if (real(d[1], c3, "C2/P") != 0)
               not_default(mk, "C2/P/XNP", d[1]);
-            if (real(a[6], c0, "VP") == 0 && real(b[3], c1, "C") != 0)
-              w.differ("*MAT_JOHNSON_COOK VP = 0: Anvil's rate is the plastic strain rate (VP = 1)");
+            // VP = 0 (the default): the total strain rate scales the yield
+            // stress; VP = 1: the plastic strain rate, solved with the
+            // return.
+            w.set("Rate form", real(a[6], c0, "VP") == 0 ? "total" : "plastic");
             if (real(c[1], c2, "PC") != 0)
               w.differ("*MAT_JOHNSON_COOK PC/SPALL: no spall model (no pressure cutoff)");
             w.differ("*MAT_JOHNSON_COOK: all plastic work turns to heat (LS-DYNA's adiabatic rule)");

@@ -152,6 +152,11 @@ namespace anvil::MaterialModel
                       "rate); 0: no rate effects. Units: none.");
     prm.declare_entry("Reference strain rate", "1", Patterns::Double(0.),
                       "eps_0_dot of the rate term and of the damage's. Units: 1/s.");
+    prm.declare_entry("Rate form", "plastic", Patterns::Selection("plastic|total"),
+                      "Which strain rate the rate term and the damage's take: 'plastic', the effective plastic "
+                      "strain rate, solved with the return (ABAQUS; LS-DYNA's VP = 1); 'total', the effective "
+                      "total strain rate of the step, sqrt(2/3 D':D'), which scales the yield stress before the "
+                      "return (LS-DYNA's default VP = 0). Units: none.");
     prm.declare_entry("m", "1", Patterns::Double(0.), "Thermal softening exponent m of 1 - T*^m. Units: none.");
     prm.declare_entry("Melting temperature", "0", Patterns::Double(),
                       "T_m; at or below 'Transition temperature' (the default 0): no thermal softening. "
@@ -197,6 +202,7 @@ namespace anvil::MaterialModel
     l.n                    = positive("n");
     l.C                    = prm.get_double("C");
     l.reference_rate       = positive("Reference strain rate");
+    l.total_rate           = prm.get("Rate form") == "total";
     l.m                    = prm.get_double("m");
     l.melting_temperature  = prm.get_double("Melting temperature");
     l.transition_temperature = prm.get_double("Transition temperature");
@@ -236,7 +242,8 @@ namespace anvil::MaterialModel
     if (!rate_dependent())
       return "";
     std::ostringstream s;
-    s << "Johnson-Cook (C = " << law.C << ", reference rate " << law.reference_rate << " 1/s)";
+    s << "Johnson-Cook (C = " << law.C << ", reference rate " << law.reference_rate << " 1/s, of the "
+      << (law.total_rate ? "total" : "plastic") << " strain rate)";
     return s.str();
   }
 
@@ -256,7 +263,11 @@ namespace anvil::MaterialModel
   // work, the temperature (explicit: the flow stress of the step used the
   // temperature at its start, as LS-DYNA and ABAQUS/Explicit's adiabatic
   // analysis do) and the damage at the triaxiality of the returned stress.
-  void JohnsonCook::plastic_update(const double dt, double *s, double *h, const double previous_rate) const
+  void JohnsonCook::plastic_update(const double dt,
+                                   double      *s,
+                                   double      *h,
+                                   const double previous_rate,
+                                   const double total_rate) const
   {
     const double p = (s[0] + s[1] + s[2]) / 3.;
     double       xi[6];
@@ -264,7 +275,12 @@ namespace anvil::MaterialModel
       xi[k] = s[k] - (k < 3 ? p : 0.);
     const double q   = std::sqrt(1.5 * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
                                       2. * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5])));
-    const double dep = law.plastic_increment(q, h[0], h[6], dt, 3. * mu, previous_rate * dt);
+    // (The total strain rate's factor scales the yield stress; the return
+    // then has no rate term of its own: dt = 0 to it.)
+    const double dep = law.total_rate ?
+                         law.plastic_increment(q, h[0], h[6] * law.rate_factor(total_rate), 0., 3. * mu,
+                                               previous_rate * dt) :
+                         law.plastic_increment(q, h[0], h[6], dt, 3. * mu, previous_rate * dt);
     if (dep == 0.)
       return;
     const double q_new  = q - 3. * mu * dep;
@@ -277,7 +293,7 @@ namespace anvil::MaterialModel
     h[4] = rate;
     if (law.damage())
       {
-        const double eps_f = law.failure_strain(q_new > 0 ? p / q_new : 0., rate, h[2]);
+        const double eps_f = law.failure_strain(q_new > 0 ? p / q_new : 0., law.total_rate ? total_rate : rate, h[2]);
         h[3] += eps_f > 0 ? dep / eps_f : 1.;
       }
     if (law.heating())
@@ -289,6 +305,19 @@ namespace anvil::MaterialModel
   }
 
 
+  namespace
+  {
+    /** The effective total strain rate sqrt(2/3 D':D'). */
+    inline double effective_rate(const double D0, const double D1, const double D2, const double D3,
+                                 const double D4, const double D5)
+    {
+      const double m = (D0 + D1 + D2) / 3.;
+      return std::sqrt(2. / 3. * ((D0 - m) * (D0 - m) + (D1 - m) * (D1 - m) + (D2 - m) * (D2 - m) +
+                                  2. * (D3 * D3 + D4 * D4 + D5 * D5)));
+    }
+  } // namespace
+
+
   void JohnsonCook::update_cauchy_stress(const double *D, const double dt, double *s, double *h) const
   {
     add_elastic_trial(D, dt, s);
@@ -298,7 +327,8 @@ namespace anvil::MaterialModel
     const double dev = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) + (s[2] - p) * (s[2] - p) +
                        2. * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
     if (1.5 * dev > h[5] * h[5])
-      plastic_update(dt, s, h, previous_rate);
+      plastic_update(dt, s, h, previous_rate,
+                     law.total_rate ? effective_rate(D[0], D[1], D[2], D[3], D[4], D[5]) : 0.);
   }
 
 
@@ -338,7 +368,11 @@ namespace anvil::MaterialModel
       }
     if (any_plastic == 0)
       return;
-    plastic_update_batch(dt, flag, rate, s, history);
+    alignas(64) double total[W] = {};
+    if (law.total_rate)
+      for (unsigned int l = 0; l < W; ++l)
+        total[l] = effective_rate(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l]);
+    plastic_update_batch(dt, flag, rate, total, s, history);
   }
 
 
@@ -357,6 +391,7 @@ namespace anvil::MaterialModel
   void JohnsonCook::plastic_update_batch(const double dt,
                                          const std::uint64_t (&flag)[batch_size],
                                          const double (&previous_rate)[batch_size],
+                                         const double (&total_rate)[batch_size],
                                          double (&s)[6][batch_size],
                                          const BatchHistory &history) const
   {
@@ -376,7 +411,10 @@ namespace anvil::MaterialModel
       T_span(thermal_on ? law.melting_temperature - law.transition_temperature : 1.), m_exp(law.m);
     const double slope_at_zero =
       law.n < 1. ? 1e30 : (law.n == 1. ? law.B : 0.); // d(B eps^n)/d eps at eps = 0
-    const V inv_dt(dt > 0 ? 1. / dt : 0.), inv_rate(dt > 0 ? 1. / (dt * law.reference_rate) : 0.),
+    // (With the total strain rate's factor, the return has no rate term of
+    // its own: inv_rate = 0.)
+    const V inv_dt(dt > 0 ? 1. / dt : 0.),
+      inv_rate(dt > 0 && !law.total_rate ? 1. / (dt * law.reference_rate) : 0.),
       C(law.C), inv_n(1. / law.n);
 
     // T* and the thermal factor 1 - T*^m.
@@ -437,7 +475,20 @@ namespace anvil::MaterialModel
         const V T0      = V::load_aligned(&h[2][c]);
         const V s0      = V::load_aligned(&h[5][c]);
         const V thermal = V::load_aligned(&h[6][c]);
-        active          = active && (q > s0);
+        // The total strain rate's factor of the yield stress (1 with the
+        // plastic rate's form): 'scaled' is what multiplies the hardening
+        // in the return.
+        V total = zero, rate_factor = one;
+        if (law.total_rate)
+          {
+            total         = V::load_unaligned(&total_rate[c]);
+            const V ratio = total / V(law.reference_rate);
+            const M fast  = ratio > one;
+            if (xsimd::any(fast && active))
+              rate_factor = xsimd::select(fast, one + C * xsimd::log(xsimd::max(ratio, tiny)), one);
+          }
+        const V scaled = thermal * rate_factor;
+        active         = active && (q > s0 * rate_factor);
         if (!xsimd::any(active))
           continue;
         // B eps_0^n from the stored flow stress (A + B eps_0^n) theta.
@@ -449,13 +500,13 @@ namespace anvil::MaterialModel
         const V guess = V::load_unaligned(&previous_rate[c]) * V(dt);
         const M take_guess = (guess > zero) && (guess < scale);
         const V se0 =
-          xsimd::select(eps0 > zero, n_exp * Be0n / xsimd::max(eps0, tiny), V(slope_at_zero)) * thermal;
-        V d = xsimd::min((q - s0) / (three_G + xsimd::min(se0, V(1e3) * three_G)), scale);
+          xsimd::select(eps0 > zero, n_exp * Be0n / xsimd::max(eps0, tiny), V(slope_at_zero)) * scaled;
+        V d = xsimd::min((q - s0 * rate_factor) / (three_G + xsimd::min(se0, V(1e3) * three_G)), scale);
         if (law.B > 0 && !xsimd::all(take_guess || !active))
           {
-            const V over = q / xsimd::max(thermal, tiny) - A;
+            const V over = q / xsimd::max(scaled, tiny) - A;
             const V d_h  = power(over / B, inv_n) - eps0;
-            d = xsimd::select((thermal > zero) && (over > zero) && (d_h > zero), xsimd::min(d_h, scale), d);
+            d = xsimd::select((scaled > zero) && (over > zero) && (d_h > zero), xsimd::min(d_h, scale), d);
           }
         d = xsimd::select(take_guess, guess, d);
 
@@ -514,9 +565,9 @@ namespace anvil::MaterialModel
             const V R      = xsimd::select(fast, one + C * log_ratio, one);
             const V R1     = xsimd::select(fast, C * inv_d, zero);
             const V R2     = xsimd::select(fast, -C * inv_d * inv_d, zero);
-            const V g      = q - three_G * d - thermal * H * R;
-            const V g1     = -three_G - thermal * (H1 * R + H * R1);
-            const V g2     = -thermal * (H2 * R + V(2.) * H1 * R1 + H * R2);
+            const V g      = q - three_G * d - scaled * H * R;
+            const V g1     = -three_G - scaled * (H1 * R + H * R1);
+            const V g2     = -scaled * (H2 * R + V(2.) * H1 * R1 + H * R2);
             const M root   = g == zero;
             const M above  = g > zero;
             lo             = xsimd::select(running && above, d, lo);
@@ -548,7 +599,7 @@ namespace anvil::MaterialModel
         if (law.damage())
           {
             const V triax = xsimd::select(q_new > zero, p / xsimd::max(q_new, tiny), zero);
-            const V ratio = xsimd::max(rate / V(law.reference_rate), one);
+            const V ratio = xsimd::max((law.total_rate ? total : rate) / V(law.reference_rate), one);
             const V eps_f = (V(law.D[0]) + V(law.D[1]) * xsimd::exp(V(law.D[2]) * triax)) *
                             (one + V(law.D[3]) * xsimd::log(ratio)) * (one + V(law.D[4]) * homologous(T0));
             const V d_old = V::load_aligned(&h[3][c]);

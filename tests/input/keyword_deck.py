@@ -422,6 +422,23 @@ code, out, err = run_anvil(args.anvil, "gravity.inp", cwd=w, extra_args=("--tran
 c.check_true("*Dload GRAV 9.81 towards (0, 0, -2): 'Gravity = 0, 0, -9.81'", code == 0 and
              "set Gravity = 0, 0, -9.81" in out, err.strip()[-300:])
 
+# *MAT_JOHNSON_COOK's VP: 0 (the default) scales the yield stress by the
+# total strain rate's factor, 1 is the viscoplastic form (the plastic
+# strain rate, solved with the return): 'Rate form = total' / 'plastic'.
+for vp, form in (("", "total"), ("0", "total"), ("1.0", "plastic")):
+    jc = (f"*mat_johnson_cook\n2,{concrete['ro']},8.0e10,2.06e11,0.3,0.0,{vp},0\n"
+          "806e6,614e6,0.168,0.0089,1.1,1540.0,20.0,1.0\n460.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0\n0.0,0.0,0.0\n")
+    text = keyword_deck("free")["deck_free.k"]
+    start = text.index("*mat_elastic")
+    with open(os.path.join(w, "jc.k"), "w") as f:
+        f.write(text[:start] + jc + text[text.index("*initial_velocity_generation"):])
+    code, out, err = run_anvil(args.anvil, "jc.k", cwd=w, extra_args=("--translate",))
+    c.check_true(f"*MAT_JOHNSON_COOK VP = '{vp}': 'Rate form = {form}'",
+                 code == 0 and f"set Rate form = {form}" in out and "Model = johnson cook" in out,
+                 (out + err).strip()[-300:])
+code, out, err = run_anvil(args.anvil, "jc.k", cwd=w, extra_args=("--set", "Simulation/Print wall times=false"))
+c.check_true("the deck with *MAT_JOHNSON_COOK runs", code == 0, err.strip()[-300:])
+
 # LS-DYNA's SOFT = 1: the penalty from the nodal masses and the step.
 with open(os.path.join(w, "soft.k"), "w") as f:
     f.write(keyword_deck("free")["deck_free.k"].replace("0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n",

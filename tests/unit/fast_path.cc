@@ -67,11 +67,16 @@ int main()
   jl.D[3]                   = 0.002;
   jl.D[4]                   = 0.6;
   jc.set(7850., 2e11, 0.3, jl, 293, false);
+  // LS-DYNA's VP = 0: the total strain rate's factor scales the yield stress.
+  MaterialModel::JohnsonCook jc_total;
+  jl.total_rate = true;
+  jc_total.set(7850., 2e11, 0.3, jl, 293, false);
   using C = MaterialModel::ConcreteDamagedPlasticity;
   for (const MaterialModel::Interface *m : {static_cast<const MaterialModel::Interface *>(&elastic),
                                             static_cast<const MaterialModel::Interface *>(&plastic),
                                             static_cast<const MaterialModel::Interface *>(&concrete),
-                                            static_cast<const MaterialModel::Interface *>(&jc)})
+                                            static_cast<const MaterialModel::Interface *>(&jc),
+                                            static_cast<const MaterialModel::Interface *>(&jc_total)})
   for (const int config : {0, 1, 2, 3})
     {
       // One point with each hourglass control; full integration (its
@@ -83,7 +88,8 @@ int main()
       const auto &material = *m;
       std::printf("== %s, %s\n",
                   m == &elastic ? "elastic" : m == &plastic ? "plastic kinematic" :
-                  m == &jc      ? "johnson cook" : "concrete damaged plasticity",
+                  m == &jc      ? "johnson cook" :
+                  m == &jc_total ? "johnson cook, rate of the total strain" : "concrete damaged plasticity",
                   config == 3 ? "full integration" :
                                 (Element::to_string(type) + " hourglass control").c_str());
       test::Block block(13, 1, 1);
@@ -168,7 +174,7 @@ int main()
                                             (std::abs(ref.history_variable(e, 0, k)) + 1e-30 + (k < 6 ? 1e3 : 0.)));
           check_below("history variables, largest relative difference", worst_h, 1e-10);
         }
-      if (m == &jc)
+      if (m == &jc || m == &jc_total)
         {
           double eps_p = 0, T = 0;
           for (unsigned int e = 0; e < ref.n_elements(); ++e)

@@ -6,6 +6,7 @@
  */
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include <anvil/material_model/rate_form_elastic.h>
@@ -40,6 +41,12 @@ namespace anvil::MaterialModel
     double m = 1, melting_temperature = 0, transition_temperature = 0;
     double density = 0, specific_heat = 0, heat_fraction = 0;
     double D[5] = {0, 0, 0, 0, 0};
+    /** Which strain rate the rate term (and the damage's) takes: false,
+        the effective plastic strain rate, solved with the return (ABAQUS,
+        LS-DYNA's VP = 1); true, the effective total strain rate of the
+        step, sqrt(2/3 D':D'), which scales the yield stress before the
+        return (LS-DYNA's default VP = 0). */
+    bool total_rate = false;
 
     /** Whether the flow stress softens with temperature. */
     bool thermal_softening() const
@@ -51,6 +58,14 @@ namespace anvil::MaterialModel
     bool heating() const
     {
       return heat_fraction > 0 && specific_heat > 0;
+    }
+
+    /** The rate factor 1 + C ln(rate / eps_0_dot), 1 below the reference
+        rate. */
+    double rate_factor(const double rate) const
+    {
+      const double ratio = rate / reference_rate;
+      return ratio > 1. ? 1. + C * std::log(ratio) : 1.;
     }
 
     /** Whether damage accumulates (some D_i given). */
@@ -105,6 +120,10 @@ namespace anvil::MaterialModel
    * temperature at the start of the step; then adiabatic heating and
    * damage. Isotropic hardening: no back stress, so nothing to rotate
    * besides the stress.
+   *
+   * With LS-DYNA's VP = 0 ('Rate form = total') the rate term is that of
+   * the step's effective total strain rate, known before the return: the
+   * yield stress is scaled, and the return solves the hardening alone.
    *
    * History per point: effective plastic strain, plastic work density,
    * temperature, damage, effective plastic strain rate, and the
@@ -172,12 +191,12 @@ namespace anvil::MaterialModel
   private:
     /** The return, heating and damage of one point whose trial stress is
         @p s (updated in place) and history @p h. */
-    void plastic_update(double dt, double *s, double *h, double previous_rate = 0) const;
+    void plastic_update(double dt, double *s, double *h, double previous_rate = 0, double total_rate = 0) const;
     /** The same for the lanes of a batch whose @p flag is set, in vector
         registers. */
     void plastic_update_batch(double dt, const std::uint64_t (&flag)[batch_size],
-                              const double (&previous_rate)[batch_size], double (&s)[6][batch_size],
-                              const BatchHistory &history) const;
+                              const double (&previous_rate)[batch_size], const double (&total_rate)[batch_size],
+                              double (&s)[6][batch_size], const BatchHistory &history) const;
 
     JohnsonCookLaw law;
     double         initial_temperature = 0;
