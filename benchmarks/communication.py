@@ -40,21 +40,15 @@ from concurrent.futures import ThreadPoolExecutor
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.abspath(os.path.join(HERE, ".."))
 sys.path.insert(0, os.path.join(SOURCE, "tests"))
-from anvil_test import elastic_box_body  # noqa: E402
 
 COLUMN = os.path.join(SOURCE, "prm", "rc_column_impact", "rc_column_impact.prm")
 
 
 def blocks_scene(path):
-    # Two steel blocks 1 m x 1 m x 0.8 m, 40 x 40 x 32 elements each
-    # (102,400 in all), the upper one moving down at 1 m/s onto the lower.
+    # benchmarks/pressed_blocks.prm: two steel blocks of 51,200 elements,
+    # the upper one moving down at 1 m/s onto the lower.
     with open(path, "w") as fh:
-        fh.write("set Bodies = lower, upper\nset Contact pairs = press\n"
-                 + elastic_box_body("lower", (0, 0, 0), (1, 1, 0.8), (40, 40, 32), 7850, 2.06e11, 0.3)
-                 + elastic_box_body("upper", (0, 0, 0.8), (1, 1, 1.6), (40, 40, 32), 7850, 2.06e11, 0.3)
-                 + "subsection Body upper\n  set Initial velocity = 0, 0, -1\nend\n"
-                 + "subsection Contact pair press\n  set Algorithm = penalty\n  set First body = lower\n"
-                 "  set Second body = upper\nend\n")
+        fh.write(f"include {os.path.join(HERE, 'pressed_blocks.prm')}\n")
     return path
 
 

@@ -1,0 +1,45 @@
+"""The benchmark scripts stay runnable as the code and the test helpers
+change: each benchmarks/**/*.py compiles, every name it imports from
+tests/anvil_test.py exists there, and every scene or mesh file it names
+under the source tree (os.path.join of the source or benchmark folder,
+named SOURCE, HERE or top, and strings ending in .prm, .inp, .k or .msh)
+exists. (Three scripts once imported
+scene builders that the test helpers no longer had, and failed at their
+first line.)"""
+import ast
+import glob
+import os
+import anvil_test
+from anvil_test import Checker, arguments
+
+args = arguments()
+c = Checker("benchmark scripts import what exists")
+scripts = sorted(glob.glob(os.path.join(args.source_dir, "benchmarks", "**", "*.py"), recursive=True))
+c.check_true("benchmarks/ has scripts", len(scripts) > 0)
+for path in scripts:
+    name = os.path.relpath(path, args.source_dir)
+    with open(path) as f:
+        text = f.read()
+    try:
+        tree = ast.parse(text, name)
+    except SyntaxError as e:
+        c.check_true(f"{name} compiles", False, str(e))
+        continue
+    missing = [alias.name for node in ast.walk(tree)
+               if isinstance(node, ast.ImportFrom) and node.module == "anvil_test"
+               for alias in node.names if not hasattr(anvil_test, alias.name)]
+    c.check_true(f"{name}: its imports from anvil_test exist", not missing, "missing: " + ", ".join(missing))
+    # Files named by their path parts in os.path.join(..., "a", "b.prm").
+    named = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "join":
+            parts = [a.value for a in node.args if isinstance(a, ast.Constant) and isinstance(a.value, str)]
+            first = node.args[0] if node.args else None
+            rooted = isinstance(first, ast.Name) and first.id.lower() in ("source", "here", "top")
+            if rooted and parts and parts[-1].endswith((".prm", ".inp", ".k", ".msh")) and \
+                    len(parts) == len(node.args) - 1:
+                named.append(os.path.join(*parts))
+    absent = [n for n in named if not any(os.path.exists(os.path.join(base, n))
+                                          for base in (args.source_dir, os.path.dirname(path)))]
+    c.check_true(f"{name}: the scene files it names exist ({len(named)})", not absent, "absent: " + ", ".join(absent))
+c.finish()
