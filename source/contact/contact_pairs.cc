@@ -159,13 +159,52 @@ namespace anvil::Contact
             hanging |= is_hanging(local) ? 1 : 0;
           }
         Utilities::MPI::sum(m, mpi_communicator, m);
-        // A kinematic pair corrects the motion of its nodes one by one; a
-        // hanging node's motion is its masters'.
+        // A kinematic pair corrects the motion of its nodes; a hanging
+        // node's motion is its masters', which the pair must hold too (they
+        // lie on the coarse face or edge the node hangs on, the surface).
         if (pairs[p]->kinematic() && Utilities::MPI::max(hanging, mpi_communicator) != 0)
-          throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
-                           "': the surface has hanging nodes of a 'Refinement region', which kinematic "
-                           "contact does not take yet: set 'Algorithm = penalty' there, or keep the "
-                           "region's boundary off the contact surface");
+          {
+            // Each owner's hanging pair nodes: pair index, number of
+            // masters, then each master's global x dof and weight.
+            std::vector<double> local;
+            for (const auto &[i, l] : owned_index[p])
+              if (is_hanging(l))
+                {
+                  const auto masters = hanging_masters(l);
+                  local.push_back(i);
+                  local.push_back(masters.size());
+                  for (const auto &[j, w] : masters)
+                    {
+                      local.push_back(static_cast<double>(partitioner.local_to_global(j)));
+                      local.push_back(w);
+                    }
+                }
+            std::map<unsigned long, unsigned int> pair_index;
+            for (unsigned int i = 0; i < dofs.size(); ++i)
+              pair_index[dofs[i]] = i;
+            std::vector<std::vector<std::pair<unsigned int, double>>> masters(dofs.size());
+            for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+              for (std::size_t k = 0; k < part.size();)
+                {
+                  const auto i = static_cast<unsigned int>(part[k]);
+                  const auto n = static_cast<unsigned int>(part[k + 1]);
+                  k += 2;
+                  for (unsigned int e = 0; e < n; ++e, k += 2)
+                    {
+                      const auto at = pair_index.find(static_cast<unsigned long>(part[k]));
+                      if (at == pair_index.end())
+                        throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
+                                         "': a hanging node of the contact surface (a 'Refinement region' "
+                                         "meeting it) follows a node that is not on the surface, which "
+                                         "kinematic contact cannot move: set 'Algorithm = penalty' there, "
+                                         "or keep the region's boundary off the contact surface");
+                      masters[i].emplace_back(at->second, part[k + 1]);
+                    }
+                }
+            pairs[p]->set_hanging_nodes(masters);
+          }
+        else
+          pairs[p]->set_hanging_nodes({});
         if (pairs[p]->kinematic() && adapts_during_run() &&
             (bodies[body[0]].local_refinement_levels() > 0 || bodies[body[1]].local_refinement_levels() > 0))
           throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
@@ -306,7 +345,8 @@ namespace anvil::Contact
               const bool rigid     = !rigid_dof.empty() && rigid_dof[l];
               const bool held      = constraints.is_held(l);
               vs[3 * i + d]        = held ? constraints.prescribed_velocity(l) : velocity.local_element(l);
-              ws[3 * i + d]        = rigid || held ? 0. : 1. / mass.local_element(l);
+              // (A hanging node moves with its masters: no mass of its own.)
+              ws[3 * i + d] = rigid || held || is_hanging(l) ? 0. : 1. / mass.local_element(l);
             }
         Utilities::MPI::sum(xs, mpi_communicator, xs);
         Utilities::MPI::sum(vs, mpi_communicator, vs);

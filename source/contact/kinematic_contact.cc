@@ -204,6 +204,20 @@ namespace anvil::Contact
   }
 
 
+  void KinematicContact::set_hanging_nodes(const std::vector<std::vector<std::pair<unsigned int, double>>> &masters)
+  {
+    hanging.clear();
+    dependants.clear();
+    if (std::all_of(masters.begin(), masters.end(), [](const auto &m) { return m.empty(); }))
+      return;
+    hanging = masters;
+    dependants.assign(masters.size(), {});
+    for (unsigned int i = 0; i < masters.size(); ++i)
+      for (const auto &[j, w] : masters[i])
+        dependants[j].push_back(i);
+  }
+
+
   void KinematicContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
     for (auto &surf : surface)
@@ -244,6 +258,24 @@ namespace anvil::Contact
     std::vector<double> xp(3 * n_nodes);
     for (unsigned int j = 0; j < 3 * n_nodes; ++j)
       xp[j] = x[j] + dt * (v[j] + dt_avg * f[j] * w[j]);
+    // A hanging node (on a refinement interface) has no mass of its own
+    // (w = 0, its forces condensed onto its masters): its place is its
+    // masters', before and after every correction.
+    const auto follow = [&](const unsigned int i) {
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          double value = 0;
+          for (const auto &[j, weight] : hanging[i])
+            value += weight * xp[3 * j + d];
+          xp[3 * i + d] = value;
+        }
+    };
+    const auto follow_all = [&]() {
+      for (unsigned int i = 0; i < hanging.size(); ++i)
+        if (!hanging[i].empty())
+          follow(i);
+    };
+    follow_all();
     std::array<Vec, 2> centre{};
     for (unsigned int s = 0; s < 2; ++s)
       if (analytic[s].shape)
@@ -358,6 +390,15 @@ namespace anvil::Contact
                       xm += phi[a] * x[3 * masters.segments[k][a] + d];
                     g0 += (x[3 * i + d] - xm) * n[d];
                   }
+                // A face the node was already well behind at the start of
+                // the step (a quarter of its element's thickness) is not
+                // one it is in contact with: contact left it at most the
+                // small penetration a correction leaves. (As two bodies of
+                // the same section part, a node in the middle of one's end
+                // face, a quarter of the section from the other's side
+                // face, lies that deep behind it, just beyond its edge.)
+                if (g0 < -0.25 * masters.depth[k])
+                  continue;
                 const double approach = g0 - g;
                 const double tie      = 1e-9 * masters.depth[k];
                 if (approach > best_approach + tie ||
@@ -397,8 +438,23 @@ namespace anvil::Contact
         }
       return g;
     };
-    // Move the constraint's nodes by the impulse @p P along @p dir.
+    // Move the constraint's nodes by the impulse @p P along @p dir (with
+    // hanging nodes: the nodes that move on their own, and the hanging
+    // nodes with them).
     auto apply = [&](const Constraint &c, const Vec &P, std::vector<double> &imp) {
+      if (!c.nodes.empty())
+        {
+          for (const auto &[k, a] : c.nodes)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                xp[3 * k + d] += w[3 * k + d] * a * P[d];
+                imp[3 * k + d] += a * P[d];
+              }
+          for (const auto &[k, a] : c.nodes)
+            for (const unsigned int h : dependants[k])
+              follow(h);
+          return;
+        }
       for (unsigned int d = 0; d < 3; ++d)
         {
           xp[3 * c.slave + d] += w[3 * c.slave + d] * P[d];
@@ -410,17 +466,50 @@ namespace anvil::Contact
             }
         }
     };
+    // With hanging nodes, each constraint's gap as a sum over the nodes
+    // that move on their own: g = sum_k a_k x_k . n, a hanging node's
+    // coefficient spread over its masters by their weights.
+    const auto expand = [&](Constraint &c) {
+      c.nodes.clear();
+      const auto put = [&](const unsigned int k, const double a) {
+        for (auto &[j, b] : c.nodes)
+          if (j == k)
+            {
+              b += a;
+              return;
+            }
+        c.nodes.emplace_back(k, a);
+      };
+      const auto add = [&](const unsigned int i, const double a) {
+        if (hanging[i].empty())
+          put(i, a);
+        else
+          for (const auto &[j, weight] : hanging[i])
+            put(j, a * weight);
+      };
+      add(c.slave, 1.);
+      for (unsigned int a = 0; a < c.n_master; ++a)
+        add(c.master[a], -c.phi[a]);
+    };
     std::vector<Constraint> kept;
     for (auto &c : constraints)
       {
         c.weight = 0;
-        for (unsigned int d = 0; d < 3; ++d)
+        if (!hanging.empty())
           {
-            double wd = w[3 * c.slave + d];
-            for (unsigned int a = 0; a < c.n_master; ++a)
-              wd += c.phi[a] * c.phi[a] * w[3 * c.master[a] + d];
-            c.weight += c.normal[d] * c.normal[d] * wd;
+            expand(c);
+            for (const auto &[k, a] : c.nodes)
+              for (unsigned int d = 0; d < 3; ++d)
+                c.weight += c.normal[d] * c.normal[d] * a * a * w[3 * k + d];
           }
+        else
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              double wd = w[3 * c.slave + d];
+              for (unsigned int a = 0; a < c.n_master; ++a)
+                wd += c.phi[a] * c.phi[a] * w[3 * c.master[a] + d];
+              c.weight += c.normal[d] * c.normal[d] * wd;
+            }
         c.impulse = 0;
         if (c.weight > 0)
           kept.push_back(c);
@@ -478,6 +567,7 @@ namespace anvil::Contact
             impulse[j] = 0.5 * (impulse[j] + first_impulse[j]);
             xp[j]      = xp0[j] + w[j] * impulse[j];
           }
+        follow_all();
         for (auto &c : constraints)
           c.impulse *= 0.5;
       }

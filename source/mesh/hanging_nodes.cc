@@ -69,6 +69,17 @@ namespace anvil
   }
 
 
+  std::vector<std::pair<unsigned int, double>> HangingNodes::masters_of(const unsigned int i) const
+  {
+    std::vector<std::pair<unsigned int, double>> out;
+    for (unsigned int k = 0; k < dof.size(); ++k)
+      if (dof[k] == i)
+        for (unsigned int e = start[k]; e < start[k + 1]; ++e)
+          out.emplace_back(master[e], weight[e]);
+    return out;
+  }
+
+
   void HangingNodes::condense(double *values) const
   {
     for (unsigned int k = 0; k < dof.size(); ++k)

@@ -86,6 +86,11 @@ namespace anvil
     return simulator.hanging.is_hanging(i);
   }
 
+  std::vector<std::pair<unsigned int, double>> SimulatorAccess::hanging_masters(const unsigned int i) const
+  {
+    return simulator.hanging.masters_of(i);
+  }
+
   double SimulatorAccess::node_mass(const unsigned int i) const
   {
     return simulator.hanging.is_hanging(i) ? simulator.hanging_mass[i] : simulator.mass.local_element(i);

@@ -207,6 +207,16 @@ namespace anvil::Contact
       return {};
     }
 
+    /** The pair nodes that hang on a refinement interface: for each pair
+        node, its masters (pair node indices) and weights, empty where it
+        does not hang. A kinematic pair moves them through their masters;
+        the others need nothing (their forces are condensed with the
+        elements'). */
+    virtual void set_hanging_nodes(const std::vector<std::vector<std::pair<unsigned int, double>>> &masters)
+    {
+      (void)masters;
+    }
+
     /** The faces of the eroded elements @p ids (sorted) leave the pair. */
     virtual void deactivate_elements(const std::vector<unsigned long> &ids)
     {

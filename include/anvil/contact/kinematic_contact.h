@@ -98,6 +98,7 @@ namespace anvil::Contact
                           double                     dt,
                           std::vector<double>       &f_contact) override;
     void deactivate_elements(const std::vector<unsigned long> &ids) override;
+    void set_hanging_nodes(const std::vector<std::vector<std::pair<unsigned int, double>>> &masters) override;
     void serialize(StateArchive &ar) override;
 
     bool   symmetric       = true;
@@ -135,6 +136,11 @@ namespace anvil::Contact
       std::array<double, 3>       arm;
       double                      impulse, weight;
       bool                        on_first;
+      /** With hanging nodes in the pair: the constraint's gap as a sum
+          over nodes that move on their own, each with its coefficient
+          (the slave's 1 and the masters' -phi, a hanging node's spread
+          over its masters). */
+      std::vector<std::pair<unsigned int, double>> nodes;
     };
 
     std::vector<unsigned long> dofs;
@@ -143,6 +149,10 @@ namespace anvil::Contact
     AnalyticSurface            analytic[2];
     std::vector<double>        node_mass;
     std::vector<Constraint>    constraints;
+    /** Each pair node's masters where it hangs (set_hanging_nodes), and
+        each node's hanging dependants; empty without hanging nodes. */
+    std::vector<std::vector<std::pair<unsigned int, double>>> hanging;
+    std::vector<std::vector<unsigned int>>                    dependants;
 
     /** The state from step to step: the contact forces and positions of
         the last correction (the trapezoidal work), the shape's reaction and

@@ -67,6 +67,11 @@ namespace anvil
       return i < hanging.size() && hanging[i];
     }
 
+    /** The masters of the hanging dof with local index @p i and their
+        weights (local indices; empty where @p i does not hang or its line
+        is not held). */
+    std::vector<std::pair<unsigned int, double>> masters_of(unsigned int i) const;
+
     /** C^T: values[j] += w_ij values[i] for each hanging i (all of them
         the process holds, whose values must be complete), then
         values[i] = 0. */

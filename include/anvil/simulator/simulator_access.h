@@ -75,6 +75,8 @@ namespace anvil
     /** Whether the owned or ghost dof with local index @p i hangs (follows
         the coarse face or edge of a refinement interface). */
     bool         is_hanging(unsigned int i) const;
+    /** The masters (local indices) and weights of the hanging dof @p i. */
+    std::vector<std::pair<unsigned int, double>> hanging_masters(unsigned int i) const;
     /** Whether the mesh is refined and coarsened during the run ('Adapt
         interval'). */
     bool         adapts_during_run() const;
