@@ -205,12 +205,6 @@ namespace anvil::Contact
           }
         else
           pairs[p]->set_hanging_nodes({});
-        if (pairs[p]->kinematic() && adapts_during_run() &&
-            (bodies[body[0]].local_refinement_levels() > 0 || bodies[body[1]].local_refinement_levels() > 0))
-          throw InputError(scene_file + ": subsection 'Contact pair " + pairs[p]->name +
-                           "': kinematic contact does not take a body refined during the run "
-                           "('Simulation/Adapt interval' with a 'Refinement region'): set "
-                           "'Algorithm = penalty' there");
         pairs[p]->set_node_masses(m);
         positions[p].resize(3 * dofs.size());
         if (pairs[p]->needs_velocities())

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace anvil::Contact
@@ -227,12 +228,46 @@ namespace anvil::Contact
   }
 
 
+  // The stream holds what every rank holds alike; the last correction's
+  // forces and positions of each node go by its scene vertex (node_keys),
+  // so that a run refined or coarsened since (a new mesh, new pair nodes)
+  // finds the nodes it kept. A new node has no last correction: its
+  // position is left unknown (NaN), and the first step's work leaves it
+  // out.
   void KinematicContact::serialize(StateArchive &ar)
   {
+    const bool adapted = ar.is_loading() && ar.element_transfer() != nullptr;
     for (auto &surf : surface)
-      ar &surf.active;
-    ar &previous_force &previous_position &previous_shape_load &previous_centre &has_previous &work
-      &last_result;
+      {
+        std::vector<char> active = surf.active;
+        ar &active;
+        if (!adapted)
+          surf.active = active;
+      }
+    ar &previous_shape_load &previous_centre &has_previous &work &last_result;
+    const unsigned int         n_nodes = dofs.size();
+    std::vector<std::uint64_t> index, keys;
+    if (ar.is_loading())
+      {
+        previous_force.assign(3 * n_nodes, 0.);
+        previous_position.assign(3 * n_nodes, 0.);
+        for (unsigned int i = 0; i < n_nodes; ++i)
+          index.push_back(i);
+      }
+    else
+      index = own_nodes;
+    for (const auto i : index)
+      keys.push_back(node_keys[i]);
+    ar.keyed_items("nodes", keys, 7, [&](const std::size_t k, RecordCursor &io) {
+      const auto i     = index[k];
+      double     known = 1;
+      io(known);
+      io(previous_force, 3 * i, 3);
+      io(previous_position, 3 * i, 3);
+      if (known == 0)
+        for (unsigned int d = 0; d < 3; ++d)
+          previous_position[3 * i + d] = std::numeric_limits<double>::quiet_NaN();
+    }, adapted);
   }
 
 
@@ -666,8 +701,10 @@ namespace anvil::Contact
     if (has_previous)
       {
         double step_work = 0;
+        // (A node new since a round of refinement has no last position.)
         for (unsigned int j = 0; j < 3 * n_nodes; ++j)
-          step_work += 0.5 * (previous_force[j] + force[j]) * (x[j] - previous_position[j]);
+          if (!std::isnan(previous_position[j]))
+            step_work += 0.5 * (previous_force[j] + force[j]) * (x[j] - previous_position[j]);
         for (unsigned int s = 0; s < 2; ++s)
           if (analytic[s].shape)
             for (unsigned int d = 0; d < 3; ++d)

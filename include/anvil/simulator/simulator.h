@@ -179,7 +179,7 @@ namespace anvil
         their masters (nothing without local refinement). */
     void condense_forces();
     /** The order of a checkpoint's state (check_checkpoint()). */
-    static constexpr int checkpoint_layout = 12;
+    static constexpr int checkpoint_layout = 13;
     /** The weight of a fully integrated element against 1000 for a
         one-point one: the production column's fully integrated concrete
         (cracking under the hammer, eight return mappings an element)
