@@ -246,18 +246,13 @@ namespace anvil::Contact
       }
     ar &previous_shape_load &previous_centre &has_previous &work &last_result;
     const unsigned int         n_nodes = dofs.size();
-    std::vector<std::uint64_t> index, keys;
     if (ar.is_loading())
       {
         previous_force.assign(3 * n_nodes, 0.);
         previous_position.assign(3 * n_nodes, 0.);
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          index.push_back(i);
       }
-    else
-      index = own_nodes;
-    for (const auto i : index)
-      keys.push_back(node_keys[i]);
+    std::vector<std::uint64_t> index, keys;
+    keyed_nodes(ar.is_loading(), index, keys);
     ar.keyed_items("nodes", keys, 7, [&](const std::size_t k, RecordCursor &io) {
       const auto i     = index[k];
       double     known = 1;

@@ -242,17 +242,10 @@ namespace anvil::Contact
     const unsigned int record     = 2 * (6 + (friction ? 3 : 0)) + (n_previous > 0 ? 3 : 0);
     if (adapted && n_previous > 0)
       n_previous = 3 * n_nodes;
-    std::vector<std::uint64_t> index, keys;
     if (ar.is_loading())
-      {
-        previous_position.assign(n_previous, 0.);
-        for (unsigned int i = 0; i < n_nodes; ++i)
-          index.push_back(i);
-      }
-    else
-      index = own_nodes;
-    for (const auto i : index)
-      keys.push_back(node_keys[i]);
+      previous_position.assign(n_previous, 0.);
+    std::vector<std::uint64_t> index, keys;
+    keyed_nodes(ar.is_loading(), index, keys);
     ar.keyed_items("nodes", keys, record, [&](const std::size_t k, RecordCursor &io) {
       const auto i = index[k];
       for (unsigned int s = 0; s < 2; ++s)

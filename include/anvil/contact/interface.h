@@ -238,6 +238,22 @@ namespace anvil::Contact
         in node_dofs(). */
     std::vector<std::uint64_t> node_keys;
 
+    /** The nodes of a keyed table of serialize() and their keys: loading,
+        every node of the pair (each rank takes them all); writing, the
+        rank's own. */
+    void keyed_nodes(const bool loading, std::vector<std::uint64_t> &index, std::vector<std::uint64_t> &keys) const
+    {
+      index.clear();
+      keys.clear();
+      if (loading)
+        for (std::uint64_t i = 0; i < node_keys.size(); ++i)
+          index.push_back(i);
+      else
+        index = own_nodes;
+      for (const auto i : index)
+        keys.push_back(node_keys[i]);
+    }
+
     std::string name;
     std::string first_body, second_body;
   };
