@@ -358,6 +358,19 @@ namespace anvil::Contact
   }
 
 
+  void ContactPairs::nodal_force_magnitudes(VectorType &nodal) const
+  {
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      if (!inactive[p] && forces[p].size() == 3 * pairs[p]->node_dofs().size())
+        for (const auto &[i, local] : owned_index[p])
+          {
+            const double *f = &forces[p][3 * i];
+            nodal.local_element(local) =
+              std::max(nodal.local_element(local), std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
+          }
+  }
+
+
   // A pair's result: the reaction on a rigid body's analytic shape (at
   // most one surface of a pair is a rigid body's), the run's maxima.
   void ContactPairs::record_result(const unsigned int p)

@@ -232,8 +232,8 @@ namespace anvil::Contact
   // forces and positions of each node go by its scene vertex (node_keys),
   // so that a run refined or coarsened since (a new mesh, new pair nodes)
   // finds the nodes it kept. A new node has no last correction: its
-  // position is left unknown (NaN), and the first step's work leaves it
-  // out.
+  // position is left unknown (NaN), and the first step's work takes its
+  // motion over the step before from its velocity.
   void KinematicContact::serialize(StateArchive &ar)
   {
     const bool adapted = ar.is_loading() && ar.element_transfer() != nullptr;
@@ -696,10 +696,11 @@ namespace anvil::Contact
     if (has_previous)
       {
         double step_work = 0;
-        // (A node new since a round of refinement has no last position.)
+        // (A node new since a round of refinement has no last position:
+        // x^n - x^(n-1) = dt v^(n-1/2) stands for it, and no last force.)
         for (unsigned int j = 0; j < 3 * n_nodes; ++j)
-          if (!std::isnan(previous_position[j]))
-            step_work += 0.5 * (previous_force[j] + force[j]) * (x[j] - previous_position[j]);
+          step_work += 0.5 * (previous_force[j] + force[j]) *
+                       (std::isnan(previous_position[j]) ? dt_previous * v[j] : x[j] - previous_position[j]);
         for (unsigned int s = 0; s < 2; ++s)
           if (analytic[s].shape)
             for (unsigned int d = 0; d < 3; ++d)

@@ -180,14 +180,16 @@ namespace anvil
                       "the elements where this history variable of the body's "
                       "material (a name its output shows: damage, "
                       "effective_plastic_strain, strain_rate, ...) exceeds "
-                      "'Indicator threshold' at any point. Empty: none. Units: "
-                      "none.");
+                      "'Indicator threshold' at any point, or, with "
+                      "'contact_pressure', where a node of the element carries a "
+                      "contact force above the threshold times the element's "
+                      "face area (V^(2/3)). Empty: none. Units: none.");
     prm.declare_entry("Indicator threshold",
                       "0",
                       Patterns::Double(),
                       "The value of 'Indicator' above which an element is "
                       "refined (and below which it may be coarsened). Units: "
-                      "those of the variable.");
+                      "those of the variable (contact_pressure: Pa).");
     prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
   }
@@ -275,7 +277,7 @@ namespace anvil
       return false;
     if (has_refinement_box && inside(reference, refinement_lower, refinement_upper))
       return true;
-    if (indicator_index >= 0 && indicator > indicator_threshold)
+    if (indicator_index != -1 && indicator > indicator_threshold)
       return true;
     return within_near_distance(current, near_lower, near_upper);
   }
@@ -375,7 +377,9 @@ namespace anvil
     const std::string indicator = dealii::Utilities::trim(prm.get("Indicator"));
     indicator_index             = -1;
     indicator_threshold         = prm.get_double("Indicator threshold");
-    if (!indicator.empty())
+    if (indicator == "contact_pressure")
+      indicator_index = contact_pressure_indicator;
+    else if (!indicator.empty())
       {
         const auto names = material->history_names();
         const auto at    = std::find(names.begin(), names.end(), indicator);
@@ -387,11 +391,12 @@ namespace anvil
                 known += (known.empty() ? "" : ", ") + n;
             throw InputError("subsection 'Body " + name + "/Refinement region': 'Indicator' names '" +
                              printable_excerpt(indicator) + "', which the body's material does not have (its " +
-                             "variables: " + (known.empty() ? std::string("none") : known) + ")");
+                             "variables: " + (known.empty() ? std::string("none") : known) +
+                             "; or contact_pressure)");
           }
         indicator_index = at - names.begin();
       }
-    if (has_refinement_box || !refinement_near.empty() || indicator_index >= 0)
+    if (has_refinement_box || !refinement_near.empty() || indicator_index != -1)
       refinement_levels = prm.get_integer("Levels");
     prm.leave_subsection();
     if (refinement_levels > 0 && material->is_rigid())

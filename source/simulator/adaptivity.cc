@@ -34,6 +34,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
@@ -102,6 +103,28 @@ namespace anvil
               if (k >= 0)
                 for (unsigned int q = 0; q < groups[g].n_quadrature_points(); ++q)
                   indicator[c] = std::max(indicator[c], groups[g].history_output(e, q, k));
+            }
+      }
+
+    // 'Indicator = contact_pressure': the largest contact force at an
+    // element's nodes over its face area V^(2/3).
+    if (std::any_of(bodies.begin(), bodies.end(), [](const Body &b) {
+          return b.refinement_indicator() == Body::contact_pressure_indicator;
+        }))
+      {
+        VectorType nodal(force);
+        nodal = 0;
+        if (!contact->empty())
+          contact->nodal_force_magnitudes(nodal);
+        nodal.update_ghost_values();
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              bodies[cell->material_id()].refinement_indicator() == Body::contact_pressure_indicator)
+            {
+              double largest = 0;
+              for (const unsigned int v : cell->vertex_indices())
+                largest = std::max(largest, nodal(cell->vertex_dof_index(v, 0)));
+              indicator[cell->active_cell_index()] = largest / std::pow(cell->measure(), 2. / 3.);
             }
       }
 

@@ -987,6 +987,11 @@ namespace anvil
         families.push_back(std::move(constraints_and_loads));
         contact = std::make_unique<Contact::ContactPairs>(*this, std::move(pairs), std::move(pair_inactive),
                                                           *rigid_bodies);
+        for (const auto &body : bodies)
+          if (body.refinement_indicator() == Body::contact_pressure_indicator && !contact->names_body(body.name))
+            throw InputError("subsection 'Body " + body.name + "/Refinement region': 'Indicator = "
+                             "contact_pressure' refines where the body's contact pairs press it, and no "
+                             "pair in 'Contact pairs' names '" + body.name + "'");
         all_families = {solids.get()};
         for (const auto &family : families)
           all_families.push_back(family.get());

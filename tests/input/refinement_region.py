@@ -15,8 +15,12 @@ count by hand:
   layer (x from 0.25 to 0.5 m) would meet level-2 elements two levels
   apart, so the one-level rule halves it too (128): 1,024 + 128 + 32 + 1 =
   1,185 (the box alone would give 1,024 + 48 + 1 = 1,073).
+'Indicator = contact_pressure' during the run (the plate pressed into the
+block at 1 m/s): at half the plane wave's pressure rho c v the 16 face
+elements are halved, at twice it none.
 Errors, one line each and exit 2: 'Near body' naming no body, 'Near body'
-without a distance and a rigid body refined; a contact pair on a surface
+without a distance, a rigid body refined and 'contact_pressure' on a body
+in no contact pair; a contact pair on a surface
 with hanging nodes is valid, kinematic or penalty.
 """
 import os
@@ -63,11 +67,31 @@ m = re.search(r"body 'block':.*; (\d+) element\(s\) fully integrated", out)
 c.check("full integration region cutting refined elements: fully integrated elements (those of the 16 "
         "coarse ones inside)", int(m.group(1)) if m else -1, 16 * 8 + 2 * 16, 0)
 
+# 'Indicator = contact_pressure' during the run: the rigid plate 10 um from
+# the block's face x = 1, prescribed at 1 m/s into it, checked after 0.2 ms.
+# The plane wave's pressure is rho c v (c of uniaxial strain, 5,856 m/s:
+# 46 MPa), which each face element's inner node carries on its area h^2:
+# at a threshold of half that pressure the 16 elements of the face are
+# halved, at twice it none.
+E, nu, rho, v = 2e11, 0.3, 7850.0, 1.0
+pressure = rho * (E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) / rho) ** 0.5 * v
+pressing = {**no_box, R + "Indicator": "contact_pressure", R + "Levels": 1, "Simulation/Adapt interval": 2e-4,
+            "Simulation/End time": 3e-4, "Body plate/Mesh/Lower corner": "1.00001, 0, 0",
+            "Body plate/Initial velocity": "-1, 0, 0"}
+for factor, expected in ((0.5, 16), (2.0, 0)):
+    prm = test_scene(args, "tests/input/refinement_region.prm", f"pressure_{factor:g}",
+                     {**pressing, R + "Indicator threshold": factor * pressure}, touch + "end\n")
+    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+    m = re.search(r"adapt at t = \S+ s, step \d+: (\d+) element\(s\) halved", out)
+    c.check(f"contact_pressure above {factor:g} rho c v ({factor * pressure:.3g} Pa): elements halved",
+            int(m.group(1)) if m else (0 if code == 0 else -1), expected, 0)
+
 for name, overrides, text, what in (
         ("unknown_near", {**no_box, R + "Near body": "wall", R + "Distance": 0.1}, "", "is not in 'Bodies'"),
         ("no_distance", {**no_box, R + "Near body": "plate"}, "", "needs a 'Distance'"),
         ("rigid_refined", {**no_box, "Body plate/Refinement region/Lower corner": "0, 0, 0",
-                           "Body plate/Refinement region/Upper corner": "2, 2, 2"}, "", "a rigid body")):
+                           "Body plate/Refinement region/Upper corner": "2, 2, 2"}, "", "a rigid body"),
+        ("pressure_no_pair", {**no_box, R + "Indicator": "contact_pressure"}, "", "no pair")):
     code, n, err = check(name, overrides, text)
     c.check_true(f"{name}: exit 2 with one line saying '{what}'",
                  code == 2 and len(err.splitlines()) == 1 and what in err, err[:300])

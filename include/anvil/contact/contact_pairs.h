@@ -72,6 +72,19 @@ namespace anvil::Contact
     {
       return contact_frequency_squared;
     }
+    /** The magnitude of the last contact force of each own pair node, the
+        largest over the pairs, into the x entry of the node in @p nodal
+        (a vector of the nodal layout; 'Indicator = contact_pressure'). */
+    void nodal_force_magnitudes(VectorType &nodal) const;
+    /** Whether a pair names the body @p body. */
+    bool names_body(const std::string &body) const
+    {
+      for (const auto &p : pairs)
+        if (p->first_body == body || p->second_body == body)
+          return true;
+      return false;
+    }
+
     /** The faces of the eroded elements @p ids (sorted, scene-wide) leave
         every pair. */
     void deactivate_elements(const std::vector<unsigned long> &ids);

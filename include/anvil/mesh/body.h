@@ -122,11 +122,14 @@ namespace anvil
                           double                  indicator) const;
 
     /** The history variable whose value refines an element during the
-        run (its index in the material's history_names(); -1: none). */
+        run (its index in the material's history_names(); -1: none;
+        contact_pressure_indicator: the contact pressure at its nodes). */
     int refinement_indicator() const
     {
       return indicator_index;
     }
+    /** refinement_indicator() of 'Indicator = contact_pressure'. */
+    static constexpr int contact_pressure_indicator = -2;
 
   private:
     /** Whether @p point lies within 'Distance' of the box @p near_lower,
