@@ -381,6 +381,25 @@ namespace anvil::Contact
         if (boxes.empty())
           continue;
         const bgi::rtree<std::pair<BBox, unsigned int>, bgi::quadratic<16>> tree(boxes.begin(), boxes.end());
+        // Each slave node's outward normal, the sum of its faces' unit
+        // normals in the predicted motion: a face of the other body is a
+        // contact only where the two face each other.
+        std::vector<Vec> slave_normal(dofs.size(), Vec{{0, 0, 0}});
+        for (unsigned int k = 0; k < slaves.segments.size(); ++k)
+          if (slaves.active[k])
+            {
+              const auto  &q  = slaves.segments[k];
+              const Vec    d1 = {{xp[3 * q[2]] - xp[3 * q[0]], xp[3 * q[2] + 1] - xp[3 * q[0] + 1],
+                                  xp[3 * q[2] + 2] - xp[3 * q[0] + 2]}};
+              const Vec    d2 = {{xp[3 * q[3]] - xp[3 * q[1]], xp[3 * q[3] + 1] - xp[3 * q[1] + 1],
+                                  xp[3 * q[3] + 2] - xp[3 * q[1] + 2]}};
+              const Vec    c   = cross(d1, d2);
+              const double len = std::sqrt(dot(c, c));
+              if (len > 0)
+                for (const unsigned int a : q)
+                  for (unsigned int d = 0; d < 3; ++d)
+                    slave_normal[a][d] += c[d] / len;
+            }
         std::vector<std::pair<BBox, unsigned int>> found;
         for (const unsigned int i : slaves.nodes)
           {
@@ -411,6 +430,16 @@ namespace anvil::Contact
                   continue;
                 const double g = dot({{p[0] - foot[0], p[1] - foot[1], p[2] - foot[2]}}, n);
                 if (!(g < 0 && -g <= 0.5 * masters.depth[k]))
+                  continue;
+                // The faces must face each other (their normals more than
+                // about 100 degrees apart): a node of one body's end face
+                // lies in the plane of the other's side face where the two
+                // bodies' edges meet (a plate pushing a block of its size,
+                // two rods of one section), side by side with it, not
+                // against it; taken, such faces kicked the nodes sideways
+                // as the bodies parted, until the run blew up.
+                const Vec &ns = slave_normal[i];
+                if (!(dot(ns, n) < -0.2 * std::sqrt(dot(ns, ns))))
                   continue;
                 double g0 = 0;
                 for (unsigned int d = 0; d < 3; ++d)
