@@ -13,8 +13,9 @@ friction, fixed supports), 8 ms: tests/verification/adaptive_column.prm.
   again and writes the uninterrupted run's histories of nodes, contact,
   bars, hammer and mesh byte for byte (energy and momentum, sums taken in
   another order on one process, to 1e-9).
-- Kinematic contact (the default) instead of the scene's penalty, np = 2:
-  balance within 1e-4, resumed on 1 process across the round byte for byte.
+- Kinematic contact (the default) instead of the scene's penalty, np = 2,
+  to 5 ms: balance within 1e-4, resumed on 1 process from its last
+  checkpoint, a round's, byte for byte.
 - np = 2 against np = 1: the same histories byte for byte, the same rounds
   (energy and momentum to 1e-9). The hanging nodes' weighted sums add their
   masters in the order of the scene's vertices, not of the partition's dof
@@ -100,10 +101,13 @@ for name, np in (("resumed_np2", 2), ("resumed_np1", 1)):
 # Kinematic contact (the default algorithm) on the body refined during the
 # run: its pair state goes by scene vertex, new nodes start without a last
 # correction. Balance, and np = 2 resumed on one process across the round.
-kinematic = ("Contact pair impact/Algorithm=kinematic",)
+kinematic = ("Contact pair impact/Algorithm=kinematic", "Simulation/End time=0.005")
 _, dk = run("kinematic_np2", 2, sets=kinematic)
 c.check_below("kinematic contact: energy balance error, np = 2", max(read_csv(os.path.join(dk, "energy.csv"))["balance_error"]),
               1e-4)
+info = open(os.path.join(dk, "checkpoint", "adaptation")).readline().split()
+c.check_true("kinematic contact: the last checkpoint is a round's", len(info) == 4 and int(info[3]) + 1 == int(info[1]),
+             " ".join(info))
 _, dr = run("kinematic_resumed_np1", 1, resume_from=dk, sets=kinematic)
 differ = same_files(dk, dr, histories)
 c.check_true("kinematic contact: resumed across the round on 1 process: histories byte for byte", not differ,
