@@ -384,7 +384,7 @@ namespace anvil::Contact
         // Each slave node's outward normal, the sum of its faces' unit
         // normals in the predicted motion: a face of the other body is a
         // contact only where the two face each other.
-        std::vector<Vec> slave_normal(dofs.size(), Vec{{0, 0, 0}});
+        slave_normal.assign(dofs.size(), Vec{{0, 0, 0}});
         for (unsigned int k = 0; k < slaves.segments.size(); ++k)
           if (slaves.active[k])
             {
@@ -449,15 +449,6 @@ namespace anvil::Contact
                       xm += phi[a] * x[3 * masters.segments[k][a] + d];
                     g0 += (x[3 * i + d] - xm) * n[d];
                   }
-                // A face the node was already well behind at the start of
-                // the step (a quarter of its element's thickness) is not
-                // one it is in contact with: contact left it at most the
-                // small penetration a correction leaves. (As two bodies of
-                // the same section part, a node in the middle of one's end
-                // face, a quarter of the section from the other's side
-                // face, lies that deep behind it, just beyond its edge.)
-                if (g0 < -0.25 * masters.depth[k])
-                  continue;
                 const double approach = g0 - g;
                 const double tie      = 1e-9 * masters.depth[k];
                 if (approach > best_approach + tie ||

@@ -53,12 +53,12 @@ namespace anvil
     start.assign(1, 0);
     master.clear();
     weight.clear();
-    hanging.assign(n_local, false);
+    line.assign(n_local, -1);
     in_use = true;
     for (const auto &l : lines)
       {
         dof.push_back(l.dof);
-        hanging[l.dof] = true;
+        line[l.dof] = dof.size() - 1;
         for (const auto &[j, w] : l.entries)
           {
             master.push_back(j);
@@ -72,10 +72,9 @@ namespace anvil
   std::vector<std::pair<unsigned int, double>> HangingNodes::masters_of(const unsigned int i) const
   {
     std::vector<std::pair<unsigned int, double>> out;
-    for (unsigned int k = 0; k < dof.size(); ++k)
-      if (dof[k] == i)
-        for (unsigned int e = start[k]; e < start[k + 1]; ++e)
-          out.emplace_back(master[e], weight[e]);
+    if (is_hanging(i))
+      for (unsigned int e = start[line[i]]; e < start[line[i] + 1]; ++e)
+        out.emplace_back(master[e], weight[e]);
     return out;
   }
 

@@ -23,7 +23,7 @@ removed exactly, momentum conserved, friction by seed Eqs. (61)-(62).
    leave half of the corrections' difference where the meshes differ),
    momentum to 1e-12, balance 1 %; np = 2 against np = 1 for the hanging
    nodes. The mismatched rods stopped with a numerical failure as they
-   parted before the contact search left faces a node was already behind.
+   parted before the contact search took only faces facing the node.
    A rigid plate (prescribed, 1 m/s) pushing a block of its own section
    until the block leaves: no sideways momentum (1e-9), balance 1e-4 (it
    blew up as the block left before the faces had to face each other).
@@ -130,8 +130,8 @@ c.check_below("rods: np = 2 against np = 1, largest relative difference of energ
 # rest lose about as much (+2.3 % and 1.5 % measured). As the rods part, a
 # node in the middle of B's face lies a quarter of the section behind A's
 # side face, just beyond its edge: taken as a contact, it blew the rods
-# apart (0.11 s, numerical failure); a face the node was already well
-# behind at the step's start is not taken now.
+# apart (0.11 s, numerical failure); the faces must face each other now
+# (the node's face normal is B's axis, the side face's across it).
 # Then rod B's elements halved where y > 0 and x < 1 m: hanging nodes on
 # its contact face (the line y = 0) and on its sides (x = 1 m), moved
 # through their masters (a hanging node's gap and correction are its

@@ -153,6 +153,9 @@ namespace anvil::Contact
         each node's hanging dependants; empty without hanging nodes. */
     std::vector<std::vector<std::pair<unsigned int, double>>> hanging;
     std::vector<std::vector<unsigned int>>                    dependants;
+    /** Each slave node's outward normal in a pass (kept from step to step
+        so that the step allocates nothing for it). */
+    std::vector<std::array<double, 3>> slave_normal;
 
     /** The state from step to step: the contact forces and positions of
         the last correction (the trapezoidal work), the shape's reaction and

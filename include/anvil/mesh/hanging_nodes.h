@@ -64,7 +64,7 @@ namespace anvil
     /** Whether the local index @p i is a hanging dof. */
     bool is_hanging(const unsigned int i) const
     {
-      return i < hanging.size() && hanging[i];
+      return i < line.size() && line[i] >= 0;
     }
 
     /** The masters of the hanging dof with local index @p i and their
@@ -99,7 +99,8 @@ namespace anvil
         (compressed rows: masters of dof[k] at start[k] .. start[k+1]). */
     std::vector<unsigned int> dof, start, master;
     std::vector<double>       weight;
-    std::vector<bool>         hanging;
+    /** Each local index's place k in dof (-1: it does not hang). */
+    std::vector<int>          line;
     bool                      in_use = false;
   };
 } // namespace anvil
