@@ -5,11 +5,11 @@
 #include <anvil/material_model/johnson_cook.h>
 #include <anvil/utilities/input_error.h>
 
-#include <xsimd/xsimd.hpp>
-
-// GCC 12 reports the AVX-512 intrinsics behind xsimd's min, max and
-// exp as maybe uninitialized (their undefined pass-through operand).
+// GCC 12 reports the AVX-512 intrinsics behind xsimd's min, max, exp and
+// sqrt as (maybe) uninitialized (their undefined pass-through operand).
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#include <anvil/utilities/simd_pack.h>
 
 #include <algorithm>
 #include <cmath>
@@ -332,17 +332,18 @@ namespace anvil::MaterialModel
   }
 
 
-  void JohnsonCook::update_cauchy_stress_batch(const double (&D)[6][batch_size],
-                                               const double (&)[3][batch_size],
-                                               const double dt,
-                                               double (&s)[6][batch_size],
-                                               const BatchHistory &history) const
+  bool JohnsonCook::elastic_trial_batch(const double (&D)[6][batch_size],
+                                        const double dt,
+                                        double (&s)[6][batch_size],
+                                        const BatchHistory &history,
+                                        std::uint64_t (&flag)[batch_size],
+                                        double (&rate)[batch_size],
+                                        double (&total)[batch_size]) const
   {
     constexpr unsigned int W = batch_size;
     // The elastic trial and the yield check across the lanes (the stress
     // arrives rotated; no tensorial history).
-    alignas(64) double     yield[W], rate[W];
-    alignas(64) std::uint64_t flag[W];
+    alignas(64) double yield[W];
     history.load(5, yield);
     std::uint64_t any_plastic = 0;
     for (unsigned int l = 0; l < W; ++l)
@@ -367,12 +368,23 @@ namespace anvil::MaterialModel
         history.store(4, zero);
       }
     if (any_plastic == 0)
-      return;
-    alignas(64) double total[W] = {};
-    if (law.total_rate)
-      for (unsigned int l = 0; l < W; ++l)
-        total[l] = effective_rate(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l]);
-    plastic_update_batch(dt, flag, rate, total, s, history);
+      return false;
+    for (unsigned int l = 0; l < W; ++l)
+      total[l] = law.total_rate ? effective_rate(D[0][l], D[1][l], D[2][l], D[3][l], D[4][l], D[5][l]) : 0.;
+    return true;
+  }
+
+
+  void JohnsonCook::update_cauchy_stress_batch(const double (&D)[6][batch_size],
+                                               const double (&)[3][batch_size],
+                                               const double dt,
+                                               double (&s)[6][batch_size],
+                                               const BatchHistory &history) const
+  {
+    alignas(64) double        rate[batch_size], total[batch_size];
+    alignas(64) std::uint64_t flag[batch_size];
+    if (elastic_trial_batch(D, dt, s, history, flag, rate, total))
+      plastic_update_batch(dt, flag, rate, total, s, history);
   }
 
 
@@ -388,6 +400,257 @@ namespace anvil::MaterialModel
   // comes from the stored flow stress and thermal factor, so that a
   // yielding point evaluates the transcendental functions of its Newton
   // steps and of its new state only.
+  //
+  // The return is a chain of dependent operations (exp, log, divisions),
+  // bound by their latency, not by the arithmetic: its lanes are a Pack of
+  // R registers (anvil/utilities/simd_pack.h) that go through the chain
+  // side by side (R = 2 with AVX2, 1 with AVX-512). A lane's result
+  // depends on its own values only.
+  namespace
+  {
+    template <unsigned int R>
+    void plastic_return(const JohnsonCookLaw &law,
+                        const double          mu,
+                        const double          dt,
+                        const double         *active_lanes,
+                        const double         *previous_rate,
+                        const double         *total_rate,
+                        double               *s,
+                        double               *h)
+    {
+      using V                  = Simd::Pack<R>;
+      using M                  = Simd::Mask<R>;
+      constexpr unsigned int L = V::lanes;
+      using Simd::any, Simd::all, Simd::select;
+
+      // (Constants are numbers, broadcast where they are used.)
+      const double three_G = 3. * mu, A = law.A, B = law.B, n_exp = law.n, one = 1., zero = 0., tiny = 1e-300;
+      const bool thermal_on = law.thermal_softening();
+      const double T_t = law.transition_temperature, m_exp = law.m;
+      const double slope_at_zero =
+        law.n < 1. ? 1e30 : (law.n == 1. ? law.B : 0.); // d(B eps^n)/d eps at eps = 0
+      // (With the total strain rate's factor, the return has no rate term of
+      // its own: inv_rate = 0.)
+      // (Divisions are the return's scarcest operation once two chains
+      // share the latency: by constants as products, and 1/x and 1/d of a
+      // step from one division.)
+      const double inv_3G = 1. / (3. * mu), inv_B = law.B > 0 ? 1. / law.B : 0.,
+                   inv_span = thermal_on ? 1. / (law.melting_temperature - law.transition_temperature) : 1.,
+                   heat     = law.heating() ? law.heat_fraction / (law.density * law.specific_heat) : 0.,
+                   floor    = 1e-150;
+      const double inv_dt = dt > 0 ? 1. / dt : 0.,
+                   inv_rate = dt > 0 && !law.total_rate ? 1. / (dt * law.reference_rate) : 0., C = law.C,
+                   inv_n = 1. / law.n;
+
+      // T* and the thermal factor 1 - T*^m.
+      auto homologous = [&](const V &T) {
+        return thermal_on ? Simd::min(Simd::max((T - T_t) * inv_span, zero), one) : zero;
+      };
+      auto thermal_factor = [&](const V &Ts) {
+        return select(Ts > zero, one - Simd::exp(m_exp * Simd::log(Simd::max(Ts, tiny))), one);
+      };
+      // eps^n (0 at eps = 0).
+      auto power = [&](const V &eps, const double exponent) {
+        return select(eps > zero, Simd::exp(exponent * Simd::log(Simd::max(eps, tiny))), zero);
+      };
+      // (1 + u)^n and ln(1 + u) for |u| <= series_reach: their series to
+      // u^11, the first term left off below 1e-18 of the value.
+      constexpr unsigned int series_terms = 11;
+      constexpr double       series_reach = 0.03;
+      double                 binomial[series_terms];
+      for (unsigned int k = 0; k < series_terms; ++k)
+        binomial[k] = (law.n - k) / (k + 1.);
+      auto power_series = [&](const V &u) {
+        V r = one;
+        for (unsigned int k = series_terms; k-- > 0;)
+          r = one + binomial[k] * u * r;
+        return r;
+      };
+      auto log1p_series = [&](const V &u) {
+        V r(1. / series_terms);
+        for (unsigned int k = series_terms - 1; k > 0; --k)
+          r = 1. / k - u * r;
+        return u * r;
+      };
+      const auto row = [&](double *a, const unsigned int k) { return a + std::size_t(k) * L; };
+
+      M active = V::load(active_lanes) != zero;
+      V sv[6];
+      for (unsigned int k = 0; k < 6; ++k)
+        sv[k] = V::load(row(s, k));
+      const V p = (sv[0] + sv[1] + sv[2]) / V(3.);
+      V       xi[6];
+      for (unsigned int k = 0; k < 6; ++k)
+        xi[k] = k < 3 ? sv[k] - p : sv[k];
+      const V q = Simd::sqrt(V(1.5) * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
+                                       V(2.) * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5])));
+
+      const V eps0    = V::load(row(h, 0));
+      const V T0      = V::load(row(h, 2));
+      const V s0      = V::load(row(h, 5));
+      const V thermal = V::load(row(h, 6));
+      // The total strain rate's factor of the yield stress (1 with the
+      // plastic rate's form): 'scaled' is what multiplies the hardening
+      // in the return.
+      V total = zero, rate_factor = one;
+      if (law.total_rate)
+        {
+          total         = V::load(total_rate);
+          const V ratio = total / V(law.reference_rate);
+          const M fast  = ratio > one;
+          if (any(fast && active))
+            rate_factor = select(fast, one + C * Simd::log(Simd::max(ratio, tiny)), one);
+        }
+      const V scaled = thermal * rate_factor;
+      active         = active && (q > s0 * rate_factor);
+      if (!any(active))
+        return;
+      // 1 / theta and 1 / eps_0 from one division.
+      const V theta_m = Simd::max(thermal, floor), eps0_m = Simd::max(eps0, floor);
+      const V r0 = one / (theta_m * eps0_m), inv_theta = eps0_m * r0, inv_eps0 = theta_m * r0;
+      // B eps_0^n from the stored flow stress (A + B eps_0^n) theta.
+      const V Be0n = select(thermal > zero, Simd::max(s0 * inv_theta - A, zero), zero);
+
+      // The first guesses of plastic_increment().
+      const V scale      = q * inv_3G;
+      const V inv_q      = one / Simd::max(q, tiny);
+      const V tol        = V(JohnsonCookLaw::return_tolerance) * scale;
+      const V guess      = V::load(previous_rate) * V(dt);
+      const M take_guess = (guess > zero) && (guess < scale);
+      const V se0 = select(eps0 > zero, n_exp * Be0n * inv_eps0, V(slope_at_zero)) * scaled;
+      V       d   = Simd::min((q - s0 * rate_factor) / (three_G + Simd::min(se0, V(1e3) * three_G)), scale);
+      if (law.B > 0 && !all(take_guess || !active))
+        {
+          const V over = (law.total_rate ? q / Simd::max(scaled, tiny) : q * inv_theta) - A;
+          const V d_h  = power(over * inv_B, inv_n) - eps0;
+          d = select((scaled > zero) && (over > zero) && (d_h > zero), Simd::min(d_h, scale), d);
+        }
+      d = select(take_guess, guess, d);
+
+      // Newton's method in the bracket, as plastic_increment() per lane.
+      // x^n and ln(d / dt eps_0_dot) are evaluated at the first point and
+      // wherever a lane's step leaves the reach of the series about that
+      // point (|d - d_a| <= 0.03 of x_a and of d_a, on the same side of the
+      // rate term's kink); between, their series. Once every running lane
+      // is within reach, the steps that polish the roots cost no
+      // transcendental function.
+      V    lo = zero, hi = scale;
+      M    running = active;
+      V    x_a = zero, xn_a = zero, d_a = zero, log_a = zero, inv_x_a = zero, inv_d_a = zero;
+      M    fast_a   = running && !running;
+      bool anchored = false;
+      for (unsigned int it = 0; it < 100 && any(running); ++it)
+        {
+          const V x     = eps0 + d;
+          const V ratio = d * inv_rate;
+          const M fast  = ratio > one;
+          // Each lane takes the series or the functions by its own step
+          // alone, so that its result does not depend on the other points
+          // of its batch (np = 2 gives np = 1's bits).
+          V xn, log_ratio;
+          M small = running && !running;
+          if (anchored)
+            {
+              const V u_x = (d - d_a) * inv_x_a;
+              const V u_d = (d - d_a) * inv_d_a;
+              small       = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
+                      (!fast || ((d_a > zero) && (Simd::abs(u_d) <= V(series_reach))));
+              xn          = xn_a * power_series(u_x);
+              log_ratio   = log_a + log1p_series(u_d);
+            }
+          // 1 / x and 1 / d from one division.
+          const V x_m = Simd::max(x, floor), d_m = Simd::max(d, floor), r_xd = one / (x_m * d_m);
+          const V inv_x = d_m * r_xd, inv_d = x_m * r_xd;
+          if (!all(small || !running))
+            {
+              const V xn_f  = power(x, n_exp);
+              const V log_f = any(fast && running) ? Simd::log(Simd::max(ratio, tiny)) : zero;
+              xn            = select(small, xn, xn_f);
+              log_ratio     = select(small, log_ratio, log_f);
+              x_a           = select(small, x_a, x);
+              xn_a          = select(small, xn_a, xn_f);
+              d_a           = select(small, d_a, d);
+              inv_x_a       = select(small, inv_x_a, inv_x);
+              inv_d_a       = select(small, inv_d_a, inv_d);
+              log_a         = select(small, log_a, log_f);
+              fast_a        = (small && fast_a) || (!small && fast);
+              anchored      = true;
+            }
+          const M pos    = x > zero;
+          const V H      = A + B * xn;
+          const V H1     = select(pos, n_exp * B * xn * inv_x, V(slope_at_zero));
+          const V H2     = select(pos, (n_exp - one) * H1 * inv_x, zero);
+          const V Rf     = select(fast, one + C * log_ratio, one);
+          const V R1     = select(fast, C * inv_d, zero);
+          const V R2     = select(fast, -C * inv_d * inv_d, zero);
+          const V g      = q - three_G * d - scaled * H * Rf;
+          const V g1     = -three_G - scaled * (H1 * Rf + H * R1);
+          const V g2     = -scaled * (H2 * Rf + V(2.) * H1 * R1 + H * R2);
+          const M root   = g == zero;
+          const M above  = g > zero;
+          lo             = select(running && above, d, lo);
+          hi             = select(running && !above, d, hi);
+          const V step   = -g / g1;
+          const M inside = (d + step > lo) && (d + step < hi);
+          const M newton_done =
+            (Simd::abs(step) <= tol) ||
+            (inside && (Simd::abs(g2) * step * step <= V(2.) * tol * Simd::abs(g1)) &&
+             (((d + step) * inv_rate > one) == fast));
+          const V next = select(inside || newton_done, d + step, V(0.5) * (lo + hi));
+          const M done = root || newton_done || (!inside && (hi - lo <= tol));
+          d            = select(running && !root, next, d);
+          running      = running && !done;
+        }
+      const V dep = select(active, d, zero);
+      active      = active && (dep != zero);
+
+      const V q_new  = q - three_G * dep;
+      const V factor = one - three_G * dep * inv_q;
+      for (unsigned int k = 0; k < 6; ++k)
+        select(active, factor * xi[k] + (k < 3 ? p : zero), sv[k]).store(row(s, k));
+      const V rate = dep * inv_dt;
+      const V eps1 = eps0 + dep;
+      select(active, eps1, eps0).store(row(h, 0));
+      const V work = V::load(row(h, 1));
+      select(active, work + q_new * dep, work).store(row(h, 1));
+      select(active, rate, V::load(row(h, 4))).store(row(h, 4));
+      if (law.damage())
+        {
+          const V triax = select(q_new > zero, p / Simd::max(q_new, tiny), zero);
+          const V ratio = Simd::max((law.total_rate ? total : rate) / V(law.reference_rate), one);
+          const V eps_f = (V(law.D[0]) + V(law.D[1]) * Simd::exp(V(law.D[2]) * triax)) *
+                          (one + V(law.D[3]) * Simd::log(ratio)) * (one + V(law.D[4]) * homologous(T0));
+          const V d_old = V::load(row(h, 3));
+          select(active, d_old + select(eps_f > zero, dep / eps_f, one), d_old).store(row(h, 3));
+        }
+      V thermal1 = thermal;
+      if (law.heating())
+        {
+          const V T1 =
+            select(active, T0 + heat * q_new * dep, T0);
+          T1.store(row(h, 2));
+          if (thermal_on)
+            {
+              thermal1 = select(active, thermal_factor(homologous(T1)), thermal);
+              thermal1.store(row(h, 6));
+            }
+        }
+      // eps_1^n by the series about the lane's last point of evaluation
+      // where it is within its reach, as in the iteration.
+      const V u_x    = (eps1 - x_a) * inv_x_a;
+      const M small  = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach));
+      V       eps1_n = xn_a * power_series(u_x);
+      if (!all(small || !active))
+        eps1_n = select(small, eps1_n, power(eps1, n_exp));
+      const V flow = (A + B * eps1_n) * thermal1;
+      select(active, flow, s0).store(row(h, 5));
+    }
+  } // namespace
+
+
+  // The history values the return reads and writes.
+  constexpr unsigned int n_return_history = 7;
+
   void JohnsonCook::plastic_update_batch(const double dt,
                                          const std::uint64_t (&flag)[batch_size],
                                          const double (&previous_rate)[batch_size],
@@ -395,240 +658,15 @@ namespace anvil::MaterialModel
                                          double (&s)[6][batch_size],
                                          const BatchHistory &history) const
   {
-    using V                = xsimd::batch<double>;
-    using M                = xsimd::batch_bool<double>;
-    constexpr unsigned int n = V::size;
-    static_assert(batch_size % n == 0, "a batch is a whole number of vector registers");
-
-    constexpr unsigned int n_history = 7;
-    alignas(64) double     h[n_history][batch_size];
-    for (unsigned int k = 0; k < n_history; ++k)
+    static_assert(batch_size % Simd::register_lanes == 0, "a batch is a whole number of vector registers");
+    constexpr unsigned int W = batch_size;
+    alignas(64) double     h[n_return_history][W], active[W];
+    for (unsigned int k = 0; k < n_return_history; ++k)
       history.load(k, h[k]);
-
-    const V    three_G(3. * mu), A(law.A), B(law.B), n_exp(law.n), one(1.), zero(0.), tiny(1e-300);
-    const bool thermal_on = law.thermal_softening();
-    const V    T_t(law.transition_temperature),
-      T_span(thermal_on ? law.melting_temperature - law.transition_temperature : 1.), m_exp(law.m);
-    const double slope_at_zero =
-      law.n < 1. ? 1e30 : (law.n == 1. ? law.B : 0.); // d(B eps^n)/d eps at eps = 0
-    // (With the total strain rate's factor, the return has no rate term of
-    // its own: inv_rate = 0.)
-    const V inv_dt(dt > 0 ? 1. / dt : 0.),
-      inv_rate(dt > 0 && !law.total_rate ? 1. / (dt * law.reference_rate) : 0.),
-      C(law.C), inv_n(1. / law.n);
-
-    // T* and the thermal factor 1 - T*^m.
-    auto homologous = [&](const V &T) {
-      return thermal_on ? xsimd::min(xsimd::max((T - T_t) / T_span, zero), one) : zero;
-    };
-    auto thermal_factor = [&](const V &Ts) {
-      return xsimd::select(Ts > zero, one - xsimd::exp(m_exp * xsimd::log(xsimd::max(Ts, tiny))), one);
-    };
-    // eps^n (0 at eps = 0).
-    auto power = [&](const V &eps, const V &exponent) {
-      return xsimd::select(eps > zero, xsimd::exp(exponent * xsimd::log(xsimd::max(eps, tiny))), zero);
-    };
-    // (1 + u)^n and ln(1 + u) for |u| <= series_reach: their series to
-    // u^11, the first term left off below 1e-18 of the value.
-    constexpr unsigned int series_terms = 11;
-    constexpr double       series_reach = 0.03;
-    V                      binomial[series_terms];
-    for (unsigned int k = 0; k < series_terms; ++k)
-      binomial[k] = V((law.n - k) / (k + 1.));
-    auto power_series = [&](const V &u) {
-      V r = one;
-      for (unsigned int k = series_terms; k-- > 0;)
-        r = one + binomial[k] * u * r;
-      return r;
-    };
-    auto log1p_series = [&](const V &u) {
-      V r(1. / series_terms);
-      for (unsigned int k = series_terms - 1; k > 0; --k)
-        r = V(1. / k) - u * r;
-      return u * r;
-    };
-
-    for (unsigned int c = 0; c < batch_size; c += n)
-      {
-        alignas(64) double active_mask[n];
-        bool               any = false;
-        for (unsigned int l = 0; l < n; ++l)
-          {
-            active_mask[l] = flag[c + l] != 0 ? 1. : 0.;
-            any            = any || flag[c + l] != 0;
-          }
-        if (!any)
-          continue;
-        M active = V::load_aligned(active_mask) != zero;
-
-        V sv[6];
-        for (unsigned int k = 0; k < 6; ++k)
-          sv[k] = V::load_unaligned(&s[k][c]);
-        const V p = (sv[0] + sv[1] + sv[2]) / V(3.);
-        V       xi[6];
-        for (unsigned int k = 0; k < 6; ++k)
-          xi[k] = k < 3 ? sv[k] - p : sv[k];
-        const V q = xsimd::sqrt(V(1.5) * (xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2] +
-                                          V(2.) * (xi[3] * xi[3] + xi[4] * xi[4] + xi[5] * xi[5])));
-
-        const V eps0    = V::load_aligned(&h[0][c]);
-        const V T0      = V::load_aligned(&h[2][c]);
-        const V s0      = V::load_aligned(&h[5][c]);
-        const V thermal = V::load_aligned(&h[6][c]);
-        // The total strain rate's factor of the yield stress (1 with the
-        // plastic rate's form): 'scaled' is what multiplies the hardening
-        // in the return.
-        V total = zero, rate_factor = one;
-        if (law.total_rate)
-          {
-            total         = V::load_unaligned(&total_rate[c]);
-            const V ratio = total / V(law.reference_rate);
-            const M fast  = ratio > one;
-            if (xsimd::any(fast && active))
-              rate_factor = xsimd::select(fast, one + C * xsimd::log(xsimd::max(ratio, tiny)), one);
-          }
-        const V scaled = thermal * rate_factor;
-        active         = active && (q > s0 * rate_factor);
-        if (!xsimd::any(active))
-          continue;
-        // B eps_0^n from the stored flow stress (A + B eps_0^n) theta.
-        const V Be0n = xsimd::select(thermal > zero, xsimd::max(s0 / xsimd::max(thermal, tiny) - A, zero), zero);
-
-        // The first guesses of plastic_increment().
-        const V scale = q / three_G;
-        const V tol   = V(JohnsonCookLaw::return_tolerance) * scale;
-        const V guess = V::load_unaligned(&previous_rate[c]) * V(dt);
-        const M take_guess = (guess > zero) && (guess < scale);
-        const V se0 =
-          xsimd::select(eps0 > zero, n_exp * Be0n / xsimd::max(eps0, tiny), V(slope_at_zero)) * scaled;
-        V d = xsimd::min((q - s0 * rate_factor) / (three_G + xsimd::min(se0, V(1e3) * three_G)), scale);
-        if (law.B > 0 && !xsimd::all(take_guess || !active))
-          {
-            const V over = q / xsimd::max(scaled, tiny) - A;
-            const V d_h  = power(over / B, inv_n) - eps0;
-            d = xsimd::select((scaled > zero) && (over > zero) && (d_h > zero), xsimd::min(d_h, scale), d);
-          }
-        d = xsimd::select(take_guess, guess, d);
-
-        // Newton's method in the bracket, as plastic_increment() per lane.
-        // x^n and ln(d / dt eps_0_dot) are evaluated at the first point
-        // and wherever a lane's step leaves the reach of the series about
-        // that point (|d - d_a| <= 0.03 of x_a and of d_a, on the same
-        // side of the rate term's kink); between, their series. Once every
-        // running lane is within reach, the steps that polish the roots
-        // cost no transcendental function.
-        V lo = zero, hi = scale;
-        M running = active;
-        V x_a = zero, xn_a = zero, d_a = zero, log_a = zero, inv_x_a = zero, inv_d_a = zero;
-        M fast_a    = running && !running;
-        bool anchored = false;
-        for (unsigned int it = 0; it < 100 && xsimd::any(running); ++it)
-          {
-            const V x     = eps0 + d;
-            const V ratio = d * inv_rate;
-            const M fast  = ratio > one;
-            // Each lane takes the series or the functions by its own
-            // step alone, so that its result does not depend on the other
-            // points of its batch (np = 2 gives np = 1's bits).
-            V xn, log_ratio;
-            M small = running && !running;
-            if (anchored)
-              {
-                const V u_x = (d - d_a) * inv_x_a;
-                const V u_d = (d - d_a) * inv_d_a;
-                small       = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
-                        (!fast || ((d_a > zero) && (xsimd::abs(u_d) <= V(series_reach))));
-                xn          = xn_a * power_series(u_x);
-                log_ratio   = log_a + log1p_series(u_d);
-              }
-            if (!xsimd::all(small || !running))
-              {
-                const V xn_f  = power(x, n_exp);
-                const V log_f = xsimd::any(fast && running) ? xsimd::log(xsimd::max(ratio, tiny)) : zero;
-                xn            = xsimd::select(small, xn, xn_f);
-                log_ratio     = xsimd::select(small, log_ratio, log_f);
-                x_a           = xsimd::select(small, x_a, x);
-                xn_a          = xsimd::select(small, xn_a, xn_f);
-                d_a           = xsimd::select(small, d_a, d);
-                inv_x_a       = xsimd::select(small, inv_x_a, one / xsimd::max(x, tiny));
-                inv_d_a       = xsimd::select(small, inv_d_a, one / xsimd::max(d, tiny));
-                log_a         = xsimd::select(small, log_a, log_f);
-                fast_a        = (small && fast_a) || (!small && fast);
-                anchored      = true;
-              }
-            const M pos    = x > zero;
-            const V inv_x  = one / xsimd::max(x, tiny);
-            const V H      = A + B * xn;
-            const V H1     = xsimd::select(pos, n_exp * B * xn * inv_x, V(slope_at_zero));
-            const V H2     = xsimd::select(pos, (n_exp - one) * H1 * inv_x, zero);
-            const V inv_d  = one / xsimd::max(d, tiny);
-            const V R      = xsimd::select(fast, one + C * log_ratio, one);
-            const V R1     = xsimd::select(fast, C * inv_d, zero);
-            const V R2     = xsimd::select(fast, -C * inv_d * inv_d, zero);
-            const V g      = q - three_G * d - scaled * H * R;
-            const V g1     = -three_G - scaled * (H1 * R + H * R1);
-            const V g2     = -scaled * (H2 * R + V(2.) * H1 * R1 + H * R2);
-            const M root   = g == zero;
-            const M above  = g > zero;
-            lo             = xsimd::select(running && above, d, lo);
-            hi             = xsimd::select(running && !above, d, hi);
-            const V step   = -g / g1;
-            const M inside = (d + step > lo) && (d + step < hi);
-            const M newton_done =
-              (xsimd::abs(step) <= tol) ||
-              (inside && (xsimd::abs(g2) * step * step <= V(2.) * tol * xsimd::abs(g1)) &&
-               (((d + step) * inv_rate > one) == fast));
-            const V next = xsimd::select(inside || newton_done, d + step, V(0.5) * (lo + hi));
-            const M done = root || newton_done || (!inside && (hi - lo <= tol));
-            d            = xsimd::select(running && !root, next, d);
-            running = running && !done;
-          }
-        const V dep = xsimd::select(active, d, zero);
-        active      = active && (dep != zero);
-
-        const V q_new  = q - three_G * dep;
-        const V factor = q_new / q;
-        for (unsigned int k = 0; k < 6; ++k)
-          xsimd::select(active, factor * xi[k] + (k < 3 ? p : zero), sv[k]).store_unaligned(&s[k][c]);
-        const V rate = dep * inv_dt;
-        const V eps1 = eps0 + dep;
-        xsimd::select(active, eps1, eps0).store_aligned(&h[0][c]);
-        xsimd::select(active, V::load_aligned(&h[1][c]) + q_new * dep, V::load_aligned(&h[1][c]))
-          .store_aligned(&h[1][c]);
-        xsimd::select(active, rate, V::load_aligned(&h[4][c])).store_aligned(&h[4][c]);
-        if (law.damage())
-          {
-            const V triax = xsimd::select(q_new > zero, p / xsimd::max(q_new, tiny), zero);
-            const V ratio = xsimd::max((law.total_rate ? total : rate) / V(law.reference_rate), one);
-            const V eps_f = (V(law.D[0]) + V(law.D[1]) * xsimd::exp(V(law.D[2]) * triax)) *
-                            (one + V(law.D[3]) * xsimd::log(ratio)) * (one + V(law.D[4]) * homologous(T0));
-            const V d_old = V::load_aligned(&h[3][c]);
-            xsimd::select(active, d_old + xsimd::select(eps_f > zero, dep / eps_f, one), d_old)
-              .store_aligned(&h[3][c]);
-          }
-        V thermal1 = thermal;
-        if (law.heating())
-          {
-            const V T1 =
-              xsimd::select(active, T0 + V(law.heat_fraction) * q_new * dep / V(law.density * law.specific_heat), T0);
-            T1.store_aligned(&h[2][c]);
-            if (thermal_on)
-              {
-                thermal1 = xsimd::select(active, thermal_factor(homologous(T1)), thermal);
-                thermal1.store_aligned(&h[6][c]);
-              }
-          }
-        // eps_1^n by the series about the lane's last point of evaluation
-        // where it is within its reach, as in the iteration.
-        const V u_x    = (eps1 - x_a) * inv_x_a;
-        const M small  = (x_a > zero) && (xsimd::abs(u_x) <= V(series_reach));
-        V       eps1_n = xn_a * power_series(u_x);
-        if (!xsimd::all(small || !active))
-          eps1_n = xsimd::select(small, eps1_n, power(eps1, n_exp));
-        const V flow    = (A + B * eps1_n) * thermal1;
-        xsimd::select(active, flow, s0).store_aligned(&h[5][c]);
-      }
-    for (unsigned int k = 0; k < n_history; ++k)
+    for (unsigned int l = 0; l < W; ++l)
+      active[l] = flag[l] != 0 ? 1. : 0.;
+    plastic_return<W / Simd::register_lanes>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0]);
+    for (unsigned int k = 0; k < n_return_history; ++k)
       history.store(k, h[k]);
   }
 

@@ -192,6 +192,13 @@ namespace anvil::MaterialModel
     /** The return, heating and damage of one point whose trial stress is
         @p s (updated in place) and history @p h. */
     void plastic_update(double dt, double *s, double *h, double previous_rate = 0, double total_rate = 0) const;
+    /** The elastic trial and the yield check of a batch: @p flag the
+        lanes beyond their yield stress, @p rate their plastic rate of the
+        step before (the history's is set to 0), @p total their total
+        strain rate (with 'Rate form = total'). Whether any lane yields. */
+    bool elastic_trial_batch(const double (&D)[6][batch_size], double dt, double (&s)[6][batch_size],
+                             const BatchHistory &history, std::uint64_t (&flag)[batch_size],
+                             double (&rate)[batch_size], double (&total)[batch_size]) const;
     /** The same for the lanes of a batch whose @p flag is set, in vector
         registers. */
     void plastic_update_batch(double dt, const std::uint64_t (&flag)[batch_size],
