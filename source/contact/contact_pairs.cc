@@ -70,7 +70,13 @@ namespace anvil::Contact
                     {
                       const auto   face     = cell->face(f);
                       const double V        = cell->measure();
-                      const double K        = bodies[body[s]].material->bulk_modulus();
+                      // (An element halved during the run keeps the
+                      // penalty's pressure stiffness f K / h of the
+                      // element the run started with: K / 2 per halving,
+                      // so that a round at a pressed face leaves the
+                      // contact force as it was; doc/adaptivity.md.)
+                      const double K = bodies[body[s]].material->bulk_modulus() /
+                                       double(1u << halvings_during_run(element_id(cell->active_cell_index())));
                       constexpr unsigned int cyclic[4] = {0, 1, 3, 2};
                       Point<3>               p[4];
                       for (unsigned int k = 0; k < 4; ++k)

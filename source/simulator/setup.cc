@@ -157,7 +157,27 @@ namespace anvil
       std::vector<CellData<3>>().swap(cells);
       boundary = SubCellData();
       refine_regions(serial);
+      // The cells the run starts from, so that each element knows how
+      // often it was halved during the run (halvings_during_run: the
+      // penalty keeps the stiffness of the start's element).
+      std::set<CellId> start_cells;
+      if (!adapt_rounds.empty())
+        for (const auto &cell : serial.active_cell_iterators())
+          start_cells.insert(cell->id());
       replay_adaptation(serial);
+      halvings_during_run.clear();
+      if (!start_cells.empty())
+        {
+          halvings_during_run.assign(serial.n_active_cells(), 0);
+          for (const auto &cell : serial.active_cell_iterators())
+            {
+              unsigned int n = 0;
+              auto         c = cell;
+              while (start_cells.count(c->id()) == 0 && c->level() > 0)
+                c = c->parent(), ++n;
+              halvings_during_run[cell->active_cell_index()] = start_cells.count(c->id()) > 0 ? n : 0;
+            }
+        }
       partition_by_cost(serial);
       const auto description =
         TriangulationDescription::Utilities::create_description_from_triangulation(serial, mpi_communicator);

@@ -81,6 +81,11 @@ namespace anvil
     return simulator.element_id[c];
   }
 
+  unsigned int SimulatorAccess::halvings_during_run(const unsigned int e) const
+  {
+    return e < simulator.halvings_during_run.size() ? simulator.halvings_during_run[e] : 0;
+  }
+
   bool SimulatorAccess::is_hanging(const unsigned int i) const
   {
     return simulator.hanging.is_hanging(i);

@@ -323,6 +323,10 @@ namespace anvil
     /** Each active cell's element id (by its local active cell index),
         the same on any number of processes. */
     std::vector<unsigned int> element_id;
+    /** By element id: how many times the element's cell was halved during
+        the run ('Adapt interval'), beyond the mesh the run started from
+        (empty: none was). */
+    std::vector<unsigned char> halvings_during_run;
     /** The hanging nodes of local refinement (empty without). */
     HangingNodes        hanging;
     std::vector<double> hanging_position;

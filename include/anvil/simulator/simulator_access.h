@@ -72,6 +72,10 @@ namespace anvil
         active cell index @p c: the same element on any number of
         processes. */
     unsigned int element_id(unsigned int c) const;
+    /** How many times the element with id @p e was halved during the run,
+        beyond the mesh the run started from (0 where it was not, or is
+        coarser). */
+    unsigned int halvings_during_run(unsigned int e) const;
     /** Whether the owned or ghost dof with local index @p i hangs (follows
         the coarse face or edge of a refinement interface). */
     bool         is_hanging(unsigned int i) const;
