@@ -285,7 +285,8 @@ namespace anvil::Contact
       return last_result = result;
 
     // The predicted motion without this pair's forces.
-    std::vector<double> xp(3 * n_nodes);
+    std::vector<double> &xp = predicted;
+    xp.resize(3 * n_nodes);
     for (unsigned int j = 0; j < 3 * n_nodes; ++j)
       xp[j] = x[j] + dt * (v[j] + dt_avg * f[j] * w[j]);
     // A hanging node (on a refinement interface) has no mass of its own
@@ -470,7 +471,9 @@ namespace anvil::Contact
       }
 
     // Projected Gauss-Seidel over the constraints (their order fixed).
-    std::vector<double> impulse(3 * n_nodes, 0.), friction_impulse(3 * n_nodes, 0.);
+    std::vector<double> &impulse = impulses, &friction_impulse = friction_impulses;
+    impulse.assign(3 * n_nodes, 0.);
+    friction_impulse.assign(3 * n_nodes, 0.);
     Vec                 shape_impulse{}, shape_moment{}, shape_friction{};
     auto                gap_of = [&](const Constraint &c) {
       if (c.n_master == 0)
@@ -606,9 +609,10 @@ namespace anvil::Contact
     const bool averaged = balanced && n_first_pass > 0 && n_first_pass < constraints.size();
     if (averaged)
       {
-        const std::vector<double> xp0 = xp;
+        std::vector<double> &xp0 = predicted_first, &first_impulse = impulses_first;
+        xp0 = xp;
         solve(0, n_first_pass);
-        std::vector<double> first_impulse(3 * n_nodes, 0.);
+        first_impulse.assign(3 * n_nodes, 0.);
         first_impulse.swap(impulse);
         xp = xp0;
         solve(n_first_pass, constraints.size());
@@ -659,7 +663,8 @@ namespace anvil::Contact
 
     // The forces, the reaction on an analytic shape, the pair's figures.
     const double to_force = 1. / (dt * dt_avg);
-    std::vector<double> force(3 * n_nodes);
+    std::vector<double> &force = forces;
+    force.resize(3 * n_nodes);
     for (unsigned int j = 0; j < 3 * n_nodes; ++j)
       {
         force[j] = (impulse[j] + friction_impulse[j]) * to_force;
@@ -731,7 +736,7 @@ namespace anvil::Contact
         work -= step_work;
       }
     has_previous      = true;
-    previous_force    = force;
+    previous_force.swap(force);
     previous_position = x;
     for (unsigned int s = 0; s < 2; ++s)
       if (analytic[s].shape)

@@ -156,6 +156,9 @@ namespace anvil::Contact
     /** Each slave node's outward normal in a pass (kept from step to step
         so that the step allocates nothing for it). */
     std::vector<std::array<double, 3>> slave_normal;
+    /** The step's predicted positions, impulses and forces (and the
+        balanced passes' copies), sized once and reused from step to step. */
+    std::vector<double> predicted, impulses, friction_impulses, forces, predicted_first, impulses_first;
 
     /** The state from step to step: the contact forces and positions of
         the last correction (the trapezoidal work), the shape's reaction and
