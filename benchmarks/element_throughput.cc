@@ -17,7 +17,8 @@
  * three times in turn, for A/B comparisons of builds; materials: the
  * elastic step and each material's ratio to it, five times in turn, and
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
- * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding
+ * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding,
+ * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0)
  * alone, for profiling)
  */
 #include <anvil/element/element_group.h>
@@ -57,7 +58,8 @@ namespace
              const double                   velocity_scale = 1.,
              const bool                     reference   = false,
              const double                   steel_yield = 1e5,
-             const bool                     johnson_cook = false)
+             const bool                     johnson_cook = false,
+             const bool                     total_rate   = false)
   {
     // Elastic, or the seed's Table 1 steel with a yield stress low enough
     // that the block flows plastically from the first cycles.
@@ -88,6 +90,7 @@ namespace
     jc.A = steel_yield, jc.B = 614e6, jc.n = 0.168, jc.C = 0.0089, jc.reference_rate = 1.;
     jc.m = 1.1, jc.melting_temperature = 1540., jc.transition_temperature = 20.;
     jc.specific_heat = 460., jc.heat_fraction = 0.9;
+    jc.total_rate = total_rate; // LS-DYNA's VP = 0 (keyword decks' default)
     jc_model.set(7830., 2.06e11, 0.3, jc, 20., false);
     const MaterialModel::Interface &material =
       johnson_cook ? static_cast<const MaterialModel::Interface &>(jc_model) :
@@ -218,6 +221,10 @@ int main(int argc, char **argv)
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
                Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, true);
   };
+  const auto jc_yielding_total = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, true, true);
+  };
   // One case alone, for profiling (perf record) the material updates.
   if (argc > 3 && std::string(argv[3]) != "materials")
     {
@@ -228,6 +235,7 @@ int main(int argc, char **argv)
                                name == "concrete-cracking" ? concrete_cracking() :
                                name == "jc-elastic"        ? jc_elastic() :
                                name == "jc-yielding"       ? jc_yielding() :
+                               name == "jc-yielding-total" ? jc_yielding_total() :
                                name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
                                                    Result{-1., 0.};
       if (r.ns_per_element_cycle < 0)
@@ -235,7 +243,7 @@ int main(int argc, char **argv)
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
                        "elastic, steel-elastic, steel-yielding, concrete-elastic, "
-                       "concrete-cracking, jc-elastic, jc-yielding)\n",
+                       "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total)\n",
                        name.c_str());
           return 1;
         }
