@@ -191,6 +191,28 @@ namespace anvil
                       "refined (and below which it may be coarsened). Units: "
                       "those of the variable (contact_pressure: Pa).");
     prm.leave_subsection();
+    prm.enter_subsection("Refinement region 2");
+    prm.declare_entry("Lower corner",
+                      "",
+                      Patterns::Anything(),
+                      "A second region with its own 'Levels', usually finer "
+                      "inside the first (the nose of an impactor inside the "
+                      "struck part of a member): the lower corner of its box "
+                      "(reference coordinates, by element centroid). An element "
+                      "is halved up to the largest 'Levels' of the regions that "
+                      "hold for it, at the start and during the run. Empty: none. "
+                      "Units: m.");
+    prm.declare_entry("Upper corner", "", Patterns::Anything(), "Upper corner of the second box. Units: m.");
+    prm.declare_entry("Near body",
+                      "",
+                      Patterns::Anything(),
+                      "As in 'Refinement region': also the elements within "
+                      "'Distance' of this body's box (during the run, its "
+                      "current box). Empty: none. Units: none.");
+    prm.declare_entry("Distance", "0", Patterns::Double(0.), "The reach of 'Near body'. Units: m.");
+    prm.declare_entry("Levels", "2", Patterns::Integer(0, 4), "How many times the second region halves its "
+                      "elements. Units: none.");
+    prm.leave_subsection();
     RigidBody::Motion::declare_parameters(prm);
   }
 
@@ -239,6 +261,28 @@ namespace anvil
   }
 
 
+  namespace
+  {
+    /** Whether @p point lies within @p distance of the box @p lower,
+        @p upper (false for an empty box, lower above upper). */
+    bool within(const dealii::Point<3> &point,
+                const dealii::Point<3> &lower,
+                const dealii::Point<3> &upper,
+                const double            distance)
+    {
+      if (!(lower[0] <= upper[0]))
+        return false;
+      double d2 = 0;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          const double out = std::max({lower[d] - point[d], 0., point[d] - upper[d]});
+          d2 += out * out;
+        }
+      return d2 <= distance * distance;
+    }
+  } // namespace
+
+
   bool Body::in_refinement_region(const dealii::Point<3> &centroid,
                                   const dealii::Point<3> &near_lower,
                                   const dealii::Point<3> &near_upper) const
@@ -255,15 +299,28 @@ namespace anvil
                                   const dealii::Point<3> &near_lower,
                                   const dealii::Point<3> &near_upper) const
   {
-    if (refinement_near.empty() || !(near_lower[0] <= near_upper[0]))
-      return false;
-    double d2 = 0;
-    for (unsigned int d = 0; d < 3; ++d)
+    return !refinement_near.empty() && within(point, near_lower, near_upper, refinement_distance);
+  }
+
+
+  unsigned int Body::wanted_levels(const dealii::Point<3>                               &reference,
+                                   const dealii::Point<3>                               &current,
+                                   const std::array<std::array<dealii::Point<3>, 2>, 2> &near,
+                                   const double                                          indicator,
+                                   const bool                                            with_indicator) const
+  {
+    unsigned int levels = 0;
+    if (refinement_levels > 0 &&
+        (with_indicator ? wants_refinement(reference, current, near[0][0], near[0][1], indicator) :
+                          in_refinement_region(reference, near[0][0], near[0][1])))
+      levels = refinement_levels;
+    if (second_levels > levels)
       {
-        const double out = std::max({near_lower[d] - point[d], 0., point[d] - near_upper[d]});
-        d2 += out * out;
+        if ((has_second_box && inside(reference, second_lower, second_upper)) ||
+            (!second_near.empty() && within(current, near[1][0], near[1][1], second_distance)))
+          levels = second_levels;
       }
-    return d2 <= refinement_distance * refinement_distance;
+    return levels;
   }
 
 
@@ -398,6 +455,22 @@ namespace anvil
       }
     if (has_refinement_box || !refinement_near.empty() || indicator_index != -1)
       refinement_levels = prm.get_integer("Levels");
+    prm.leave_subsection();
+    prm.enter_subsection("Refinement region 2");
+    {
+      const std::string where = "subsection 'Body " + name + "/Refinement region 2': ";
+      has_second_box          = parse_box(prm, where, second_lower, second_upper);
+      second_near             = dealii::Utilities::trim(prm.get("Near body"));
+      second_distance         = prm.get_double("Distance");
+      if (!second_near.empty() && !(second_distance > 0))
+        throw InputError(where + "'Near body' needs a 'Distance' > 0");
+      if (second_near == name)
+        throw InputError(where + "'Near body' names the body itself (use the box)");
+      second_levels = has_second_box || !second_near.empty() ? prm.get_integer("Levels") : 0;
+      if (second_levels > 0 && material->is_rigid())
+        throw InputError(where + "a rigid body moves as one and needs no finer elements (allowed on deformable "
+                         "bodies)");
+    }
     prm.leave_subsection();
     if (refinement_levels > 0 && material->is_rigid())
       throw InputError("subsection 'Body " + name + "/Refinement region': a rigid body moves as one and needs no "

@@ -81,12 +81,19 @@ namespace anvil
         for (unsigned int d = 0; d < 3; ++d)
           near_lower[b][d] = lower[3 * b + d], near_upper[b][d] = -upper[3 * b + d];
       }
-    std::vector<int> near(n_bodies, -1);
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      for (unsigned int o = 0; o < n_bodies; ++o)
-        if (!bodies[b].refinement_near_body().empty() && bodies[o].name == bodies[b].refinement_near_body())
-          near[b] = o;
+    // Each body's 'Near body' boxes, current (its first region's, its
+    // second's; an empty box where there is none).
     const Point<3> none(1e300, 1e300, 1e300), none_upper(-1e300, -1e300, -1e300);
+    std::vector<std::array<std::array<Point<3>, 2>, 2>> near(n_bodies);
+    for (unsigned int b = 0; b < n_bodies; ++b)
+      for (unsigned int r = 0; r < 2; ++r)
+        {
+          const std::string &other = r == 0 ? bodies[b].refinement_near_body() : bodies[b].second_near_body();
+          near[b][r]               = {{none, none_upper}};
+          for (unsigned int o = 0; o < n_bodies; ++o)
+            if (!other.empty() && bodies[o].name == other)
+              near[b][r] = {{near_lower[o], near_upper[o]}};
+        }
 
     // Each own element's largest indicator value and whether it is intact.
     std::vector<double> indicator(triangulation.n_active_cells(), 0.);
@@ -147,19 +154,19 @@ namespace anvil
           for (const unsigned int v : cell->vertex_indices())
             for (unsigned int d = 0; d < 3; ++d)
               current[d] += 0.125 * position(cell->vertex_dof_index(v, d));
-          const int  b        = near[cell->material_id()];
-          const auto lo       = b >= 0 ? near_lower[b] : none;
-          const auto hi       = b >= 0 ? near_upper[b] : none_upper;
-          const auto id       = static_cast<std::int64_t>(element_id[cell->active_cell_index()]) + 1;
-          const auto value    = indicator[cell->active_cell_index()];
-          const auto level    = static_cast<unsigned int>(cell->level());
-          if (level < body.local_refinement_levels() && body.wants_refinement(cell->center(), current, lo, hi, value))
+          const auto &boxes = near[cell->material_id()];
+          const auto  id    = static_cast<std::int64_t>(element_id[cell->active_cell_index()]) + 1;
+          const auto  value = indicator[cell->active_cell_index()];
+          const auto  level = static_cast<unsigned int>(cell->level());
+          if (level < body.wanted_levels(cell->center(), current, boxes, value, true))
             finer_ids.push_back(id);
           else if (level > 0 && !coarsening_refused.count(static_cast<unsigned long>(id - 1)))
             {
+              // (Joined where the parent's level is all the regions want
+              // for the parent.)
               const Point<3> parent_reference = cell->parent()->center();
               const Point<3> parent_current   = parent_reference + (current - cell->center());
-              if (!body.wants_refinement(parent_reference, parent_current, lo, hi, value))
+              if (body.wanted_levels(parent_reference, parent_current, boxes, value, true) <= level - 1)
                 joins.emplace_back(cell->parent()->id().to_string(), -id);
             }
         }

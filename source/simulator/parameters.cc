@@ -947,8 +947,12 @@ namespace anvil
                              ")");
         };
         for (const auto &body : bodies)
-          if (!body.refinement_near_body().empty())
-            check_body(body.refinement_near_body(), "Body " + body.name + "/Refinement region");
+          {
+            if (!body.refinement_near_body().empty())
+              check_body(body.refinement_near_body(), "Body " + body.name + "/Refinement region");
+            if (!body.second_near_body().empty())
+              check_body(body.second_near_body(), "Body " + body.name + "/Refinement region 2");
+          }
         auto constraints_and_loads = std::make_unique<ConstraintsAndLoads>(*this, velocity);
         constraints_and_loads->parse_parameters(prm, bc_names, bodies);
         std::vector<std::unique_ptr<Contact::Algorithm>> pairs;

@@ -228,24 +228,26 @@ namespace anvil
             lower[cell->material_id()][d] = std::min(lower[cell->material_id()][d], cell->vertex(v)[d]);
             upper[cell->material_id()][d] = std::max(upper[cell->material_id()][d], cell->vertex(v)[d]);
           }
-    std::vector<unsigned int> near(bodies.size(), numbers::invalid_unsigned_int);
+    // Each body's 'Near body' boxes (its first region's, its second's;
+    // an empty box where there is none).
+    const Point<3>                                       none(1e300, 1e300, 1e300), none_upper(-1e300, -1e300, -1e300);
+    std::vector<std::array<std::array<Point<3>, 2>, 2>> near(bodies.size());
     for (unsigned int b = 0; b < bodies.size(); ++b)
-      if (!bodies[b].refinement_near_body().empty())
-        for (unsigned int o = 0; o < bodies.size(); ++o)
-          if (bodies[o].name == bodies[b].refinement_near_body())
-            near[b] = o;
-    const Point<3> none(1e300, 1e300, 1e300);
+      for (unsigned int r = 0; r < 2; ++r)
+        {
+          const std::string &other = r == 0 ? bodies[b].refinement_near_body() : bodies[b].second_near_body();
+          near[b][r]               = {{none, none_upper}};
+          for (unsigned int o = 0; o < bodies.size(); ++o)
+            if (!other.empty() && bodies[o].name == other)
+              near[b][r] = {{lower[o], upper[o]}};
+        }
     for (unsigned int level = 0; level < levels; ++level)
       {
         bool any = false;
         for (const auto &cell : serial.active_cell_iterators())
           {
-            const unsigned int b    = cell->material_id();
-            const Body        &body = bodies[b];
-            const bool         with_near = near[b] != numbers::invalid_unsigned_int;
-            if (level < body.local_refinement_levels() &&
-                body.in_refinement_region(cell->center(), with_near ? lower[near[b]] : none,
-                                          with_near ? upper[near[b]] : none))
+            const unsigned int b = cell->material_id();
+            if (level < bodies[b].wanted_levels(cell->center(), cell->center(), near[b], 0., false))
               {
                 cell->set_refine_flag();
                 any = true;

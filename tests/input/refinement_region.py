@@ -14,7 +14,9 @@ count by hand:
   128, all with their centroid in the box, and those 1,024; the second
   layer (x from 0.25 to 0.5 m) would meet level-2 elements two levels
   apart, so the one-level rule halves it too (128): 1,024 + 128 + 32 + 1 =
-  1,185 (the box alone would give 1,024 + 48 + 1 = 1,073).
+  1,185 (the box alone would give 1,024 + 48 + 1 = 1,073);
+- two regions, x < 0.75 m at one level and 'Refinement region 2' x < 0.25 m
+  at two: 1,297; the second region alone near the plate: 177.
 'Indicator = contact_pressure' during the run (the plate pressed into the
 block at 1 m/s): at half the plane wave's pressure rho c v the 16 face
 elements are halved, at twice it none. With the penalty, a round at the
@@ -50,6 +52,16 @@ code, n, err = check("near", {**no_box, R + "Near body": "plate", R + "Distance"
 c.check("near the plate within 0.3 m: elements", n, 177, 0)
 code, n, err = check("two_levels", {R + "Upper corner": "0.25, 2, 2", R + "Levels": 2})
 c.check("two levels in x < 0.25 m, the next layer refined once by the one-level rule: elements", n, 1185, 0)
+# Two regions: the first (x < 0.75 m, one level) halves the three layers
+# of centroids 0.125, 0.375 and 0.625 m (384 elements), the second
+# (x < 0.25 m, two levels) the first layer's 128 again (1,024): 1,024 +
+# 128 + 128 + 16 + 1 = 1,297 (the first region alone: 385 + 16 + 1 = 401).
+R2 = "Body block/Refinement region 2/"
+code, n, err = check("two_regions", {R + "Upper corner": "0.75, 2, 2", R2 + "Lower corner": "-1, -1, -1",
+                                     R2 + "Upper corner": "0.25, 2, 2", R2 + "Levels": 2})
+c.check("two regions, x < 0.75 m one level and x < 0.25 m two: elements", n, 1297, 0)
+code, n, err = check("second_near", {**no_box, R2 + "Near body": "plate", R2 + "Distance": 0.3, R2 + "Levels": 1})
+c.check("the second region alone, near the plate within 0.3 m: elements", n, 177, 0)
 
 # A 'Full integration region' whose boundary x = 0.15 m cuts the first
 # layer of refined elements: an element keeps the integration of the
@@ -125,7 +137,10 @@ for name, overrides, text, what in (
         ("no_distance", {**no_box, R + "Near body": "plate"}, "", "needs a 'Distance'"),
         ("rigid_refined", {**no_box, "Body plate/Refinement region/Lower corner": "0, 0, 0",
                            "Body plate/Refinement region/Upper corner": "2, 2, 2"}, "", "a rigid body"),
-        ("pressure_no_pair", {**no_box, R + "Indicator": "contact_pressure"}, "", "no pair")):
+        ("pressure_no_pair", {**no_box, R + "Indicator": "contact_pressure"}, "", "no pair"),
+        ("second_unknown_near", {**no_box, "Body block/Refinement region 2/Near body": "wall",
+                                 "Body block/Refinement region 2/Distance": 0.1},
+         "", "Refinement region 2': body 'wall' is not in 'Bodies'")):
     code, n, err = check(name, overrides, text)
     c.check_true(f"{name}: exit 2 with one line saying '{what}'",
                  code == 2 and len(err.splitlines()) == 1 and what in err, err[:300])

@@ -14,6 +14,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -90,11 +92,32 @@ namespace anvil
       return has_full_region && integration == Element::Integration::one_point;
     }
 
-    /** Local refinement: the levels by which the elements whose reference
-        centroid lies in the 'Refinement region' are halved (0: none). */
+    /** Local refinement: the most levels by which any of the body's
+        regions ('Refinement region', 'Refinement region 2') halves its
+        elements (0: none). */
     unsigned int local_refinement_levels() const
     {
-      return refinement_levels;
+      return std::max(refinement_levels, second_levels);
+    }
+
+    /** The levels the regions want for an element: the largest 'Levels'
+        of the regions whose criteria hold for it (0: none). A box holds
+        for the reference centroid @p reference, 'Near body' for the
+        current centroid @p current against the boxes @p near (the first
+        region's 'Near body', then the second's), and, where
+        @p with_indicator (during the run), the first region's 'Indicator'
+        for the element's largest value @p indicator. */
+    unsigned int wanted_levels(const dealii::Point<3>                               &reference,
+                               const dealii::Point<3>                               &current,
+                               const std::array<std::array<dealii::Point<3>, 2>, 2> &near,
+                               double                                                indicator,
+                               bool                                                  with_indicator) const;
+
+    /** The body whose surroundings 'Refinement region 2' refines (empty:
+        none). */
+    const std::string &second_near_body() const
+    {
+      return second_near;
     }
 
     /** Whether an element with reference centroid @p centroid lies in the
@@ -156,5 +179,13 @@ namespace anvil
     double               refinement_distance = 0;
     int                  indicator_index     = -1;
     double               indicator_threshold = 0;
+    /** 'Refinement region 2': a box and a 'Near body' with their own
+        'Levels' (finer inside the first region, say: the nose of an
+        impactor inside the struck part of a member). */
+    unsigned int         second_levels   = 0;
+    bool                 has_second_box  = false;
+    dealii::Point<3>     second_lower, second_upper;
+    std::string          second_near;
+    double               second_distance = 0;
   };
 } // namespace anvil
