@@ -431,9 +431,9 @@ namespace anvil::MaterialModel
         law.n < 1. ? 1e30 : (law.n == 1. ? law.B : 0.); // d(B eps^n)/d eps at eps = 0
       // (With the total strain rate's factor, the return has no rate term of
       // its own: inv_rate = 0.)
-      // (Divisions are the return's scarcest operation once two chains
-      // share the latency: by constants as products, and 1/x and 1/d of a
-      // step from one division.)
+      // (Divisions by constants as products, and 1/theta with 1/eps_0,
+      // 1/x with 1/d from one division each: fewer of the slowest
+      // operation; doc/performance.md measures it.)
       const double inv_3G = 1. / (3. * mu), inv_B = law.B > 0 ? 1. / law.B : 0.,
                    inv_span = thermal_on ? 1. / (law.melting_temperature - law.transition_temperature) : 1.,
                    heat     = law.heating() ? law.heat_fraction / (law.density * law.specific_heat) : 0.,

@@ -261,45 +261,58 @@ namespace anvil
   }
 
 
-  namespace
+  bool Body::Region::holds(const dealii::Point<3>                  &reference,
+                           const dealii::Point<3>                  &current,
+                           const std::array<dealii::Point<3>, 2> &near_box) const
   {
-    /** Whether @p point lies within @p distance of the box @p lower,
-        @p upper (false for an empty box, lower above upper). */
-    bool within(const dealii::Point<3> &point,
-                const dealii::Point<3> &lower,
-                const dealii::Point<3> &upper,
-                const double            distance)
-    {
-      if (!(lower[0] <= upper[0]))
-        return false;
-      double d2 = 0;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          const double out = std::max({lower[d] - point[d], 0., point[d] - upper[d]});
-          d2 += out * out;
-        }
-      return d2 <= distance * distance;
-    }
-  } // namespace
-
-
-  bool Body::in_refinement_region(const dealii::Point<3> &centroid,
-                                  const dealii::Point<3> &near_lower,
-                                  const dealii::Point<3> &near_upper) const
-  {
-    if (refinement_levels == 0)
+    if (levels == 0)
       return false;
-    if (has_refinement_box && inside(centroid, refinement_lower, refinement_upper))
+    if (has_box && inside(reference, lower, upper))
       return true;
-    return within_near_distance(centroid, near_lower, near_upper);
+    // Within 'Distance' of the 'Near body''s box (an empty box, lower
+    // above upper: none).
+    if (near.empty() || !(near_box[0][0] <= near_box[1][0]))
+      return false;
+    double d2 = 0;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        const double out = std::max({near_box[0][d] - current[d], 0., current[d] - near_box[1][d]});
+        d2 += out * out;
+      }
+    return d2 <= distance * distance;
   }
 
 
-  bool Body::within_near_distance(const dealii::Point<3> &point,
-                                  const dealii::Point<3> &near_lower,
-                                  const dealii::Point<3> &near_upper) const
+  void Body::Region::parse(dealii::ParameterHandler &prm, const std::string &where, const std::string &body)
   {
-    return !refinement_near.empty() && within(point, near_lower, near_upper, refinement_distance);
+    has_box  = parse_box(prm, where, lower, upper);
+    near     = dealii::Utilities::trim(prm.get("Near body"));
+    distance = prm.get_double("Distance");
+    if (!near.empty() && !(distance > 0))
+      throw InputError(where + "'Near body' needs a 'Distance' > 0");
+    if (near == body)
+      throw InputError(where + "'Near body' names the body itself (use the box)");
+    levels = 0;
+  }
+
+
+  std::vector<std::array<std::array<dealii::Point<3>, 2>, 2>>
+  Body::near_boxes(const std::vector<Body>             &bodies,
+                   const std::vector<dealii::Point<3>> &lower,
+                   const std::vector<dealii::Point<3>> &upper)
+  {
+    const dealii::Point<3> none(1e300, 1e300, 1e300), none_upper(-1e300, -1e300, -1e300);
+    std::vector<std::array<std::array<dealii::Point<3>, 2>, 2>> near(bodies.size());
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      for (unsigned int r = 0; r < 2; ++r)
+        {
+          const std::string &other = (r == 0 ? bodies[b].first_region : bodies[b].second_region).near;
+          near[b][r]               = {{none, none_upper}};
+          for (unsigned int o = 0; o < bodies.size(); ++o)
+            if (!other.empty() && bodies[o].name == other)
+              near[b][r] = {{lower[o], upper[o]}};
+        }
+    return near;
   }
 
 
@@ -310,33 +323,12 @@ namespace anvil
                                    const bool                                            with_indicator) const
   {
     unsigned int levels = 0;
-    if (refinement_levels > 0 &&
-        (with_indicator ? wants_refinement(reference, current, near[0][0], near[0][1], indicator) :
-                          in_refinement_region(reference, near[0][0], near[0][1])))
-      levels = refinement_levels;
-    if (second_levels > levels)
-      {
-        if ((has_second_box && inside(reference, second_lower, second_upper)) ||
-            (!second_near.empty() && within(current, near[1][0], near[1][1], second_distance)))
-          levels = second_levels;
-      }
+    if (first_region.holds(reference, current, near[0]) ||
+        (with_indicator && first_region.levels > 0 && indicator_index != -1 && indicator > indicator_threshold))
+      levels = first_region.levels;
+    if (second_region.levels > levels && second_region.holds(reference, current, near[1]))
+      levels = second_region.levels;
     return levels;
-  }
-
-
-  bool Body::wants_refinement(const dealii::Point<3> &reference,
-                              const dealii::Point<3> &current,
-                              const dealii::Point<3> &near_lower,
-                              const dealii::Point<3> &near_upper,
-                              const double            indicator) const
-  {
-    if (refinement_levels == 0)
-      return false;
-    if (has_refinement_box && inside(reference, refinement_lower, refinement_upper))
-      return true;
-    if (indicator_index != -1 && indicator > indicator_threshold)
-      return true;
-    return within_near_distance(current, near_lower, near_upper);
   }
 
 
@@ -421,16 +413,7 @@ namespace anvil
                                 full_region_upper);
     prm.leave_subsection();
     prm.enter_subsection("Refinement region");
-    refinement_levels = 0;
-    has_refinement_box =
-      parse_box(prm, "subsection 'Body " + name + "/Refinement region': ", refinement_lower, refinement_upper);
-    refinement_near     = dealii::Utilities::trim(prm.get("Near body"));
-    refinement_distance = prm.get_double("Distance");
-    if (!refinement_near.empty() && !(refinement_distance > 0))
-      throw InputError("subsection 'Body " + name + "/Refinement region': 'Near body' needs a 'Distance' > 0");
-    if (refinement_near == name)
-      throw InputError("subsection 'Body " + name + "/Refinement region': 'Near body' names the body itself "
-                       "(use the box)");
+    first_region.parse(prm, "subsection 'Body " + name + "/Refinement region': ", name);
     const std::string indicator = dealii::Utilities::trim(prm.get("Indicator"));
     indicator_index             = -1;
     indicator_threshold         = prm.get_double("Indicator threshold");
@@ -453,28 +436,19 @@ namespace anvil
           }
         indicator_index = at - names.begin();
       }
-    if (has_refinement_box || !refinement_near.empty() || indicator_index != -1)
-      refinement_levels = prm.get_integer("Levels");
+    if (first_region.has_box || !first_region.near.empty() || indicator_index != -1)
+      first_region.levels = prm.get_integer("Levels");
     prm.leave_subsection();
     prm.enter_subsection("Refinement region 2");
-    {
-      const std::string where = "subsection 'Body " + name + "/Refinement region 2': ";
-      has_second_box          = parse_box(prm, where, second_lower, second_upper);
-      second_near             = dealii::Utilities::trim(prm.get("Near body"));
-      second_distance         = prm.get_double("Distance");
-      if (!second_near.empty() && !(second_distance > 0))
-        throw InputError(where + "'Near body' needs a 'Distance' > 0");
-      if (second_near == name)
-        throw InputError(where + "'Near body' names the body itself (use the box)");
-      second_levels = has_second_box || !second_near.empty() ? prm.get_integer("Levels") : 0;
-      if (second_levels > 0 && material->is_rigid())
-        throw InputError(where + "a rigid body moves as one and needs no finer elements (allowed on deformable "
-                         "bodies)");
-    }
+    second_region.parse(prm, "subsection 'Body " + name + "/Refinement region 2': ", name);
+    if (second_region.has_box || !second_region.near.empty())
+      second_region.levels = prm.get_integer("Levels");
     prm.leave_subsection();
-    if (refinement_levels > 0 && material->is_rigid())
-      throw InputError("subsection 'Body " + name + "/Refinement region': a rigid body moves as one and needs no "
-                       "finer elements (allowed on deformable bodies)");
+    for (const auto &[region, levels] : {std::pair{"Refinement region", first_region.levels},
+                                         std::pair{"Refinement region 2", second_region.levels}})
+      if (levels > 0 && material->is_rigid())
+        throw InputError("subsection 'Body " + name + "/" + region + "': a rigid body moves as one and needs no "
+                         "finer elements (allowed on deformable bodies)");
     rigid.parse_parameters(prm, name);
     if (!material->is_rigid() && rigid.shape.type != RigidBody::Shape::Type::mesh)
       throw InputError("subsection 'Body " + name + "/Rigid body': a 'Contact shape' "

@@ -81,19 +81,8 @@ namespace anvil
         for (unsigned int d = 0; d < 3; ++d)
           near_lower[b][d] = lower[3 * b + d], near_upper[b][d] = -upper[3 * b + d];
       }
-    // Each body's 'Near body' boxes, current (its first region's, its
-    // second's; an empty box where there is none).
-    const Point<3> none(1e300, 1e300, 1e300), none_upper(-1e300, -1e300, -1e300);
-    std::vector<std::array<std::array<Point<3>, 2>, 2>> near(n_bodies);
-    for (unsigned int b = 0; b < n_bodies; ++b)
-      for (unsigned int r = 0; r < 2; ++r)
-        {
-          const std::string &other = r == 0 ? bodies[b].refinement_near_body() : bodies[b].second_near_body();
-          near[b][r]               = {{none, none_upper}};
-          for (unsigned int o = 0; o < n_bodies; ++o)
-            if (!other.empty() && bodies[o].name == other)
-              near[b][r] = {{near_lower[o], near_upper[o]}};
-        }
+    // (The current boxes: 'Near body' follows the impactor.)
+    const auto near = Body::near_boxes(bodies, near_lower, near_upper);
 
     // Each own element's largest indicator value and whether it is intact.
     std::vector<double> indicator(triangulation.n_active_cells(), 0.);

@@ -228,19 +228,7 @@ namespace anvil
             lower[cell->material_id()][d] = std::min(lower[cell->material_id()][d], cell->vertex(v)[d]);
             upper[cell->material_id()][d] = std::max(upper[cell->material_id()][d], cell->vertex(v)[d]);
           }
-    // Each body's 'Near body' boxes (its first region's, its second's;
-    // an empty box where there is none).
-    const Point<3>                                       none(1e300, 1e300, 1e300), none_upper(-1e300, -1e300, -1e300);
-    std::vector<std::array<std::array<Point<3>, 2>, 2>> near(bodies.size());
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      for (unsigned int r = 0; r < 2; ++r)
-        {
-          const std::string &other = r == 0 ? bodies[b].refinement_near_body() : bodies[b].second_near_body();
-          near[b][r]               = {{none, none_upper}};
-          for (unsigned int o = 0; o < bodies.size(); ++o)
-            if (!other.empty() && bodies[o].name == other)
-              near[b][r] = {{lower[o], upper[o]}};
-        }
+    const auto near = Body::near_boxes(bodies, lower, upper);
     for (unsigned int level = 0; level < levels; ++level)
       {
         bool any = false;

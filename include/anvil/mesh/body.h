@@ -97,7 +97,7 @@ namespace anvil
         elements (0: none). */
     unsigned int local_refinement_levels() const
     {
-      return std::max(refinement_levels, second_levels);
+      return std::max(first_region.levels, second_region.levels);
     }
 
     /** The levels the regions want for an element: the largest 'Levels'
@@ -113,36 +113,27 @@ namespace anvil
                                double                                                indicator,
                                bool                                                  with_indicator) const;
 
+    /** The 'Near body' boxes of each of @p bodies (its first region's,
+        its second's; an empty box, lower above upper, where there is none),
+        from every body's box @p lower, @p upper: wanted_levels()'s @p
+        near. */
+    static std::vector<std::array<std::array<dealii::Point<3>, 2>, 2>>
+    near_boxes(const std::vector<Body>             &bodies,
+               const std::vector<dealii::Point<3>> &lower,
+               const std::vector<dealii::Point<3>> &upper);
+
     /** The body whose surroundings 'Refinement region 2' refines (empty:
         none). */
     const std::string &second_near_body() const
     {
-      return second_near;
+      return second_region.near;
     }
-
-    /** Whether an element with reference centroid @p centroid lies in the
-        refinement region: the box, or within the distance of the box
-        @p near_lower, @p near_upper around the 'Near body'. */
-    bool in_refinement_region(const dealii::Point<3> &centroid,
-                              const dealii::Point<3> &near_lower,
-                              const dealii::Point<3> &near_upper) const;
 
     /** The body whose surroundings are refined too (empty: none). */
     const std::string &refinement_near_body() const
     {
-      return refinement_near;
+      return first_region.near;
     }
-
-    /** Whether an element is wanted finer during the run ('Adapt
-        interval'): its reference centroid @p reference in the box, its
-        current centroid @p current within the distance of the 'Near
-        body''s current box @p near_lower, @p near_upper, or its largest
-        'Indicator' value @p indicator above the threshold. */
-    bool wants_refinement(const dealii::Point<3> &reference,
-                          const dealii::Point<3> &current,
-                          const dealii::Point<3> &near_lower,
-                          const dealii::Point<3> &near_upper,
-                          double                  indicator) const;
 
     /** The history variable whose value refines an element during the
         run (its index in the material's history_names(); -1: none;
@@ -155,11 +146,26 @@ namespace anvil
     static constexpr int contact_pressure_indicator = -2;
 
   private:
-    /** Whether @p point lies within 'Distance' of the box @p near_lower,
-        @p near_upper (false: no 'Near body', or an empty box). */
-    bool within_near_distance(const dealii::Point<3> &point,
-                              const dealii::Point<3> &near_lower,
-                              const dealii::Point<3> &near_upper) const;
+    /** A refinement region: a box (by reference centroid) and the reach
+        of a 'Near body' (by current centroid), and how many times it
+        halves its elements. */
+    struct Region
+    {
+      unsigned int     levels  = 0;
+      bool             has_box = false;
+      dealii::Point<3> lower, upper;
+      std::string      near;
+      double           distance = 0;
+
+      /** Whether it holds for an element with centroids @p reference and
+          @p current, the 'Near body''s box being @p near. */
+      bool holds(const dealii::Point<3>                  &reference,
+                 const dealii::Point<3>                  &current,
+                 const std::array<dealii::Point<3>, 2> &near) const;
+      /** Its box, 'Near body' and 'Distance' from the current subsection
+          (of body @p body, for the error lines @p where starts). */
+      void parse(dealii::ParameterHandler &prm, const std::string &where, const std::string &body);
+    };
 
     /** Where the mesh comes from (the plugin 'Source' names). */
     std::unique_ptr<MeshSources::Interface> mesh_source;
@@ -172,20 +178,11 @@ namespace anvil
     double               imperfection_factor = 1.;
     bool                 has_full_region     = false;
     dealii::Point<3>     full_region_lower, full_region_upper;
-    unsigned int         refinement_levels = 0;
-    bool                 has_refinement_box = false;
-    dealii::Point<3>     refinement_lower, refinement_upper;
-    std::string          refinement_near;
-    double               refinement_distance = 0;
+    /** 'Refinement region' (with its 'Indicator') and 'Refinement region
+        2' (finer inside the first, say: the nose of an impactor inside the
+        struck part of a member). */
+    Region               first_region, second_region;
     int                  indicator_index     = -1;
     double               indicator_threshold = 0;
-    /** 'Refinement region 2': a box and a 'Near body' with their own
-        'Levels' (finer inside the first region, say: the nose of an
-        impactor inside the struck part of a member). */
-    unsigned int         second_levels   = 0;
-    bool                 has_second_box  = false;
-    dealii::Point<3>     second_lower, second_upper;
-    std::string          second_near;
-    double               second_distance = 0;
   };
 } // namespace anvil
