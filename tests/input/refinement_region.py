@@ -16,7 +16,10 @@ count by hand:
   apart, so the one-level rule halves it too (128): 1,024 + 128 + 32 + 1 =
   1,185 (the box alone would give 1,024 + 48 + 1 = 1,073);
 - two regions, x < 0.75 m at one level and 'Refinement region 2' x < 0.25 m
-  at two: 1,297; the second region alone near the plate: 177.
+  at two: 1,297; the second region alone near the plate: 177;
+- the second region during the run: the plate flying at 100 m/s towards
+  the block comes within 0.2 m of the layer x = 0.875 between the rounds
+  of 0.2 and 0.4 ms, which halves its 16 elements (177), np = 1 and 2.
 'Indicator = contact_pressure' during the run (the plate pressed into the
 block at 1 m/s): at half the plane wave's pressure rho c v the 16 face
 elements are halved, at twice it none. With the penalty, a round at the
@@ -62,6 +65,28 @@ code, n, err = check("two_regions", {R + "Upper corner": "0.75, 2, 2", R2 + "Low
 c.check("two regions, x < 0.75 m one level and x < 0.25 m two: elements", n, 1297, 0)
 code, n, err = check("second_near", {**no_box, R2 + "Near body": "plate", R2 + "Distance": 0.3, R2 + "Levels": 1})
 c.check("the second region alone, near the plate within 0.3 m: elements", n, 177, 0)
+
+# The second region during the run: the plate flies at 100 m/s towards the
+# block (no contact pair), 'Near body = plate' within 0.2 m, a round every
+# 0.2 ms. At the start the layer of centroids x = 0.875 is 0.225 m from
+# the plate's box (65 elements); at the round of 0.4 ms the plate has come
+# 0.04 m closer (0.185 m), at that of 0.2 ms only 0.02 m (0.205 m): one
+# round, which halves the layer's 16 elements (177), on one process and on
+# two alike.
+flying = {**no_box, R2 + "Near body": "plate", R2 + "Distance": 0.2, R2 + "Levels": 1,
+          "Simulation/Adapt interval": 2e-4, "Simulation/End time": 5e-4, "Body plate/Initial velocity": "-100, 0, 0"}
+for np in (1, 2):
+    prm = test_scene(args, "tests/input/refinement_region.prm", f"second_flying_np{np}", flying, "")
+    code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
+    rounds = re.findall(r"adapt at t = (\S+) s, step \d+: (\d+) element\(s\) halved", out)
+    m = re.search(r"the state moved onto (\d+) elements", out)
+    c.check_true(f"the plate entering the second region during the run, np = {np}: exit 0, one round after "
+                 f"0.4 ms", code == 0 and len(rounds) == 1 and float(rounds[0][0]) >= 4e-4,
+                 f"exit {code}, rounds {rounds}, {err[-300:]}")
+    c.check(f"the plate entering the second region, np = {np}: elements halved", int(rounds[0][1]) if rounds else -1,
+            16, 0)
+    c.check(f"the plate entering the second region, np = {np}: elements after the round", int(m.group(1)) if m else -1,
+            177, 0)
 
 # A 'Full integration region' whose boundary x = 0.15 m cuts the first
 # layer of refined elements: an element keeps the integration of the
