@@ -456,7 +456,7 @@ namespace anvil
       const char *plots_default = std::getenv("ANVIL_DEFAULT_PLOTS");
       prm.declare_entry("Partitioner",
                         "hierarchical",
-                        Patterns::Selection("hierarchical|metis|zoltan"),
+                        Patterns::Selection("hierarchical|metis|zoltan|metis per kind"),
                         "How the elements are cut into one piece per process, "
                         "each weighed by its measured cost (a fully integrated "
                         "element 15 one-point ones, a rigid body's 0.1): "
@@ -464,7 +464,12 @@ namespace anvil
                         "the cells' vertex connectivity (neighbours together, "
                         "groups of groups) into pieces of equal weight; 'metis' "
                         "and 'zoltan' partition the graph of the cells' faces "
-                        "with METIS or Trilinos' Zoltan (through deal.II). The "
+                        "with METIS or Trilinos' Zoltan (through deal.II); "
+                        "'metis per kind' gives each process an equal share of "
+                        "each kind of element (one-point, fully integrated) by "
+                        "METIS's multi-constraint partition, so that the work of "
+                        "a 'Full integration region' that changes during the run "
+                        "(cracking under an impactor) changes on every process. The "
                         "results do not depend on it, bit for bit; the ghost "
                         "layer and the balance do (summary.csv: ghost_elements, "
                         "ghost_dofs; doc/performance.md). Units: none.");

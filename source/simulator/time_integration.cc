@@ -695,27 +695,39 @@ namespace anvil
               << " elements, " << dof_handler.n_dofs() << " degrees of freedom\n";
         // (The elements of a 'Full integration region': those of a
         // one-point body's group of eight-point elements.)
-        std::vector<double> full(bodies.size(), 0.);
+        // On several processes, each one's share too (the partition's
+        // balance of the expensive kind).
+        std::vector<unsigned long> own_full(bodies.size(), 0);
         for (unsigned int g = 0; g < solids->groups().size(); ++g)
           {
             const auto        &group = solids->groups()[g];
             const unsigned int b     = solids->group_body()[g];
             if (group.n_quadrature_points() == 8 && bodies[b].integration == Element::Integration::one_point)
               for (unsigned int e = 0; e < group.n_elements(); ++e)
-                full[b] += group.element_is_owned(e) ? 1. : 0.;
+                own_full[b] += group.element_is_owned(e) ? 1 : 0;
           }
-        Utilities::MPI::sum(full, mpi_communicator, full);
+        const auto full_per_process = Utilities::MPI::gather(mpi_communicator, own_full);
         for (unsigned int b = 0; b < bodies.size(); ++b)
-          pcout << "  body '" << bodies[b].name << "': " << to_string(bodies[b].formulation) << ", "
-                << Element::to_string(bodies[b].integration) << " integration"
-                << (bodies[b].integration == Element::Integration::one_point ?
-                      ", " + Element::to_string(bodies[b].hourglass) + " hourglass control" :
-                      std::string())
-                << (bodies[b].has_full_integration_region() ?
-                      "; " + std::to_string(static_cast<unsigned long>(full[b])) +
-                        " element(s) fully integrated ('Full integration region')" :
-                      std::string())
-                << "\n";
+          {
+            pcout << "  body '" << bodies[b].name << "': " << to_string(bodies[b].formulation) << ", "
+                  << Element::to_string(bodies[b].integration) << " integration"
+                  << (bodies[b].integration == Element::Integration::one_point ?
+                        ", " + Element::to_string(bodies[b].hourglass) + " hourglass control" :
+                        std::string());
+            if (bodies[b].has_full_integration_region())
+              {
+                unsigned long full = 0;
+                std::string   shares;
+                for (const auto &process : full_per_process)
+                  {
+                    full += process[b];
+                    shares += (shares.empty() ? "" : ", ") + std::to_string(process[b]);
+                  }
+                pcout << "; " << full << " element(s) fully integrated ('Full integration region')"
+                      << (full_per_process.size() > 1 ? " (per process: " + shares + ")" : std::string());
+              }
+            pcout << "\n";
+          }
         if (parameters.adapt_interval > 0 &&
             std::none_of(bodies.begin(), bodies.end(), [](const Body &b) { return b.local_refinement_levels() > 0; }))
           pcout << "Warning: " << parameters.scene_file

@@ -18,10 +18,14 @@ The same measures on the uniform coarse mesh (the interface's absence) are
 printed beside them. Also: the energy balance closes within 5e-4, and np = 2
 gives np = 1's histories bit for bit, whether the elements are cut by the
 hierarchical order, METIS or Zoltan ('Partitioner'; the ghost layer of each
-printed).
+printed); with a 'Full integration region' (90 elements), np = 2 cut by
+'metis per kind' gives np = 1's histories bit for bit and each process 45
+(+-1) of the fully integrated elements (the hierarchical cut's share printed
+beside it).
 """
 import math
 import os
+import re
 from anvil_test import Checker, arguments, run_anvil, read_csv
 
 args = arguments()
@@ -34,17 +38,26 @@ jump = -rho * cw * v
 scene = os.path.join(args.source_dir, "tests/verification/refinement_wave.prm")
 print(f"  c = {cw:.1f} m/s, T = {1e6 * T:.2f} us, jump: stress {1e-6 * jump:.2f} MPa, velocity 0")
 
-runs = {}
+# A 'Full integration region' over 0.3 m < x < 0.7 m: the 20 coarse
+# elements with their centroid in it, 10 of them halved (80 + 10 = 90
+# elements of the second kind).
+full_region = ["--set", "Body bar/Full integration region/Lower corner=0.3, -1, -1",
+               "--set", "Body bar/Full integration region/Upper corner=0.7, 1, 1"]
+runs, logs = {}, {}
 for name, np, extra in (("refined", 1, []), ("refined_np2", 2, []),
                         ("uniform", 1, ["--set", "Body bar/Refinement region/Levels=0"]),
                         ("metis_np2", 2, ["--set", "Simulation/Partitioner=metis"]),
-                        ("zoltan_np2", 2, ["--set", "Simulation/Partitioner=zoltan"])):
+                        ("zoltan_np2", 2, ["--set", "Simulation/Partitioner=zoltan"]),
+                        ("full", 1, full_region),
+                        ("kinds_np2", 2, full_region + ["--set", "Simulation/Partitioner=metis per kind"]),
+                        ("full_np2", 2, full_region)):
     cwd = os.path.join(args.work_dir, name)
     os.makedirs(cwd, exist_ok=True)
     code, out, err = run_anvil(args.anvil, scene, np=np, cwd=cwd, extra_args=extra)
     if not c.check_true(f"{name} runs to its end", code == 0, err.strip()[-300:]):
         c.finish()
     d = os.path.join(cwd, "output", "refinement_wave")
+    logs[name] = out
     runs[name] = {p: read_csv(os.path.join(d, f"probe_{p}.csv")) for p in ("fine", "coarse")}
     runs[name]["energy"] = read_csv(os.path.join(d, "energy.csv"))
     runs[name]["summary"] = {row[0]: row[1] for row in
@@ -88,4 +101,20 @@ for name, what in (("refined_np2", "np = 2"), ("metis_np2", "np = 2 cut by METIS
                for a, b in zip(p1[p][k], p2[p][k]))
     print(f"  {what}: ghost elements {p2['summary']['ghost_elements']}, ghost dofs {p2['summary']['ghost_dofs']}")
     c.check(f"{what} against np = 1, probes (largest difference)", diff, 0.0, 0.0)
+
+# 'Partitioner = metis per kind': each process an equal share of each kind
+# of element; the default hierarchical cut, weighing a fully integrated
+# element 15 one-point ones, gives the region's elements to the processes
+# as they fall along the bar. The same histories bit for bit either way.
+for name, what in (("kinds_np2", "'metis per kind'"), ("full_np2", "the hierarchical cut")):
+    m = re.search(r"(\d+) element\(s\) fully integrated .*\(per process: (\d+), (\d+)\)", logs[name])
+    shares = [int(m.group(2)), int(m.group(3))] if m else [-1, -1]
+    print(f"  {what}, np = 2: fully integrated elements per process {shares[0]}, {shares[1]} of "
+          f"{m.group(1) if m else '?'}")
+    diff = max(abs(a - b) for p in ("fine", "coarse") for k in ("ux", "vx", "stress_xx")
+               for a, b in zip(runs["full"][p][k], runs[name][p][k]))
+    c.check(f"full integration region, np = 2 cut by {what} against np = 1, probes (largest difference)",
+            diff, 0.0, 0.0)
+    if name == "kinds_np2":
+        c.check("'metis per kind': fully integrated elements on the first process, of 90", shares[0], 45, 1)
 c.finish()
