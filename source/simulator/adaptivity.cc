@@ -178,6 +178,31 @@ namespace anvil
     unsigned long finer = 0;
     for (const auto w : wishes)
       finer += w > 0;
+    // A round of joins alone may be all refused (a join whose neighbours
+    // the one-level rule holds finer): tried first on a copy of the mesh,
+    // it then costs no checkpoint and no new mesh, and the refused ones
+    // are not asked for again on this mesh.
+    if (finer == 0 && serial_mesh)
+      {
+        Triangulation<3> trial(Triangulation<3>::limit_level_difference_at_vertices);
+        trial.copy_triangulation(*serial_mesh);
+        std::vector<Triangulation<3>::active_cell_iterator> cells;
+        for (const auto &cell : trial.active_cell_iterators())
+          cells.push_back(cell);
+        for (const auto w : wishes)
+          cells[-w - 1]->set_coarsen_flag();
+        trial.prepare_coarsening_and_refinement();
+        if (std::none_of(wishes.begin(), wishes.end(), [&](const auto w) { return cells[-w - 1]->coarsen_flag_set(); }))
+          {
+            pcout << "  adapt at t = " << time << " s, step " << step_number << ": the " << wishes.size() / 8
+                  << " group(s) of eight asked to be joined stay (the one-level rule keeps their neighbours "
+                     "finer); the mesh stays"
+                  << std::endl;
+            for (const auto w : wishes)
+              coarsening_refused.insert(static_cast<unsigned long>(-w - 1));
+            return;
+          }
+      }
     pcout << "  adapt at t = " << time << " s, step " << step_number << ": " << finer << " element(s) halved, "
           << (wishes.size() - finer) / 8 << " group(s) of eight joined; the run goes on on the new mesh"
           << std::endl;

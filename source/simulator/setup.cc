@@ -181,6 +181,11 @@ namespace anvil
             }
         }
       partition_by_cost(serial);
+      if (parameters.adapt_interval > 0)
+        {
+          serial_mesh = std::make_unique<Triangulation<3>>(Triangulation<3>::limit_level_difference_at_vertices);
+          serial_mesh->copy_triangulation(serial);
+        }
       const auto description =
         TriangulationDescription::Utilities::create_description_from_triangulation(serial, mpi_communicator);
       triangulation.create_triangulation(description);

@@ -19,7 +19,9 @@ count by hand:
   at two: 1,297; the second region alone near the plate: 177;
 - the second region during the run: the plate flying at 100 m/s towards
   the block comes within 0.2 m of the layer x = 0.875 between the rounds
-  of 0.2 and 0.4 ms, which halves its 16 elements (177), np = 1 and 2.
+  of 0.2 and 0.4 ms, which halves its 16 elements (177), np = 1 and 2;
+- rounds on the two-level box: the layer halved by the one-level rule asks
+  to be joined, the rule refuses: the round says so and keeps the mesh.
 'Indicator = contact_pressure' during the run (the plate pressed into the
 block at 1 m/s): at half the plane wave's pressure rho c v the 16 face
 elements are halved, at twice it none. With the penalty, a round at the
@@ -87,6 +89,23 @@ for np in (1, 2):
             16, 0)
     c.check(f"the plate entering the second region, np = {np}: elements after the round", int(m.group(1)) if m else -1,
             177, 0)
+
+# Rounds during the run on the two-level box: the layer the one-level rule
+# halved asks to be joined (no region wants it), which the rule refuses
+# while the box stays finer beside it. The round is tried on a copy of the
+# mesh first: one line saying the 16 groups stay, no new mesh, and not
+# asked again at the next round (before, each such round wrote a
+# checkpoint and built the same mesh again).
+for np in (1, 2):
+    prm = test_scene(args, "tests/input/refinement_region.prm", f"refused_joins_np{np}",
+                     {R + "Upper corner": "0.25, 2, 2", R + "Levels": 2, "Simulation/Adapt interval": 2e-4,
+                      "Simulation/End time": 5e-4}, "")
+    code, out, err = run_anvil(args.anvil, prm, np=np, cwd=args.work_dir)
+    stay = re.findall(r"adapt at t = \S+ s, step \d+: the (\d+) group\(s\) of eight asked to be joined stay", out)
+    rebuilt = re.findall(r"adapt at t = \S+ s, step \d+: \d+ element\(s\) halved", out)
+    c.check_true(f"joins the one-level rule refuses, np = {np}: one round says the 16 groups stay, no new mesh, "
+                 f"exit 0", code == 0 and stay == ["16"] and not rebuilt,
+                 f"exit {code}, stay {stay}, rebuilt {rebuilt}, {err[-300:]}")
 
 # A 'Full integration region' whose boundary x = 0.15 m cuts the first
 # layer of refined elements: an element keeps the integration of the

@@ -516,6 +516,10 @@ namespace anvil
         neighbours), by element id: not asked for again on this mesh. */
     unsigned int            mesh_rounds = 0;
     std::set<unsigned long> coarsening_refused;
+    /** The serial mesh the run's elements were cut from (after the
+        regions and the rounds), kept where the run adapts: a round of
+        joins alone is tried on a copy first. */
+    std::unique_ptr<dealii::Triangulation<3>> serial_mesh;
   };
 
   /**
