@@ -455,21 +455,23 @@ namespace anvil
       // default through the environment (a scene's own 'set Plots' wins).
       const char *plots_default = std::getenv("ANVIL_DEFAULT_PLOTS");
       prm.declare_entry("Partitioner",
-                        "hierarchical",
+                        "metis per kind",
                         Patterns::Selection("hierarchical|metis|zoltan|metis per kind"),
                         "How the elements are cut into one piece per process, "
                         "each weighed by its measured cost (a fully integrated "
                         "element 15 one-point ones, a rigid body's 0.1): "
-                        "'hierarchical' cuts deal.II's hierarchical order of "
-                        "the cells' vertex connectivity (neighbours together, "
-                        "groups of groups) into pieces of equal weight; 'metis' "
-                        "and 'zoltan' partition the graph of the cells' faces "
-                        "with METIS or Trilinos' Zoltan (through deal.II); "
-                        "'metis per kind' gives each process an equal share of "
-                        "each kind of element (one-point, fully integrated) by "
-                        "METIS's multi-constraint partition, so that the work of "
-                        "a 'Full integration region' that changes during the run "
-                        "(cracking under an impactor) changes on every process. The "
+                        "'metis per kind' (the default) partitions the graph of "
+                        "the cells' faces with METIS, each kind of element "
+                        "(one-point, fully integrated) balanced by itself "
+                        "(METIS's multi-constraint partition), so that every "
+                        "process holds its share of a 'Full integration region' "
+                        "and of the change of its work during the run (cracking "
+                        "under an impactor); 'hierarchical' cuts deal.II's "
+                        "hierarchical order of the cells' vertex connectivity "
+                        "(neighbours together, groups of groups) into pieces of "
+                        "equal weight; 'metis' and 'zoltan' partition the face "
+                        "graph by the weights alone with METIS or Trilinos' "
+                        "Zoltan (through deal.II). The "
                         "results do not depend on it, bit for bit; the ghost "
                         "layer and the balance do (summary.csv: ghost_elements, "
                         "ghost_dofs; doc/performance.md). Units: none.");

@@ -257,7 +257,9 @@ namespace anvil
 
   // @sect3{The partition}
   //
-  // The cells are put in a hierarchical order of their vertex connectivity
+  // By default ('metis per kind') METIS cuts the cells' face graph with
+  // each kind of element balanced by itself (partition_kinds_by_metis()).
+  // 'hierarchical': the cells are put in a hierarchical order of their vertex connectivity
   // (SparsityTools::reorder_hierarchical: neighbours grouped together, in
   // groups of groups, the order p4est's forest would give the same cells),
   // and the order is cut into pieces of equal weight, one per process. A
@@ -342,6 +344,12 @@ namespace anvil
   void Simulator::partition_by_cost(Triangulation<3> &serial) const
   {
     const unsigned long n_ranks = Utilities::MPI::n_mpi_processes(mpi_communicator);
+    // (A process with no element of its own has nothing to compute and no
+    // cell to hold its share of the nodes.)
+    if (serial.n_active_cells() < n_ranks)
+      throw InputError(parameters.scene_file + ": the scene has " + std::to_string(serial.n_active_cells()) +
+                       " element(s), fewer than the " + std::to_string(n_ranks) +
+                       " MPI processes: run it on at most as many processes as elements");
     std::vector<unsigned long> weight(serial.n_active_cells());
     for (const auto &cell : serial.active_cell_iterators())
       {

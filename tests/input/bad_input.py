@@ -218,4 +218,15 @@ c.check_true("first run succeeds", code1 == 0, err1.strip())
 c.check_true("second run into the same directory: exit 2, one line naming the setting",
              code2 == 2 and len(lines) == 1 and "Overwrite existing output" in lines[0])
 c.check_true("earlier results unchanged", before is not None and open(energy).read() == before)
+
+# More processes than elements: one line on stderr and exit 2 (it was
+# deal.II's "dummy cell" from the process left without an element).
+prm = write_scene(os.path.join(args.work_dir, "few_elements.prm"),
+                  text=ok_scene.replace("Subdivisions = 2, 2, 2", "Subdivisions = 1, 1, 1"))
+code, out, err = run_anvil(args.anvil, prm, np=2, cwd=args.work_dir)
+lines = [l for l in err.splitlines() if l.startswith("anvil:")]
+print(f"    one element on two processes: {lines[-1] if lines else ''}")
+c.check_true("one element on two processes: exit 2, one line naming the element and process counts",
+             code == 2 and len(lines) == 1 and "1 element(s), fewer than the 2 MPI processes" in lines[0],
+             err.strip()[-300:])
 c.finish()
