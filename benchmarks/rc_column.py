@@ -64,6 +64,16 @@ work = tempfile.mkdtemp()
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
+# The bars in 10 mm trusses (the coarse and refined meshes' studies).
+BARS_10MM = """subsection Rebar longitudinal
+  set Element length = 0.01
+end
+subsection Rebar stirrups
+  set Element length = 0.01
+end
+"""
+
+
 def run(name, np, text, base=scene):
     prm = os.path.join(work, name + ".prm")
     with open(prm, "w") as f:
@@ -125,13 +135,7 @@ subsection Simulation
   set Output interval = 0
   set Plots = false
 end
-subsection Rebar longitudinal
-  set Element length = 0.01
-end
-subsection Rebar stirrups
-  set Element length = 0.01
-end
-"""
+""" + BARS_10MM
 
     def nose(levels, one_point):
         return f"""
@@ -219,13 +223,7 @@ subsection Simulation
   set Output interval = 0
   set Plots = false
 end
-subsection Rebar longitudinal
-  set Element length = 0.01
-end
-subsection Rebar stirrups
-  set Element length = 0.01
-end
-"""
+""" + BARS_10MM
     coarse = """
 subsection Body column
   subsection Mesh
