@@ -197,6 +197,19 @@ namespace anvil::MaterialModel
                       Patterns::Double(0.),
                       "Duvaut-Lions viscoplastic regularisation time mu applied "
                       "to the effective stress and the damage; 0: none. Units: s.");
+    prm.declare_entry("Crush band length",
+                      "",
+                      Patterns::Anything(),
+                      "The length over which the compression curve's softening "
+                      "branch holds (the gauge length of the test that measured "
+                      "it): beyond the peak, an element of characteristic length "
+                      "h reads the curve at the peak's inelastic strain plus h / "
+                      "l_c of its own strain beyond it, so that the energy crushing "
+                      "dissipates per unit area does not depend on the element "
+                      "size (as the crack band does for 'Fracture energy'). "
+                      "Empty: none, the curve as given in every element (ABAQUS's "
+                      "way: crushing then localises in the smallest elements, and "
+                      "the softening dissipates less the smaller they are). Units: m.");
     prm.declare_entry("Compressive plastic fraction",
                       "0.7",
                       Patterns::Double(0., 1.),
@@ -362,6 +375,9 @@ namespace anvil::MaterialModel
     p.erosion                  = prm.get_bool("Erosion");
     p.erosion_principal_strain = prm.get_double("Erosion principal strain");
     p.erosion_damage           = prm.get_double("Erosion damage");
+    p.crush_band_length        = optional("Crush band length");
+    if (p.crush_band_length < 0)
+      throw InputError(where + "entry 'Crush band length' must be empty (none) or a length > 0");
     if (p.erosion && p.erosion_principal_strain == 0. && p.erosion_damage == 0.)
       throw InputError(where + "'Erosion = true' needs 'Erosion principal strain' "
                                "or 'Erosion damage' > 0");
@@ -381,6 +397,10 @@ namespace anvil::MaterialModel
     gamma          = 3. * (1. - p.K_c) / (2. * p.K_c - 1.);
     tan_psi        = std::tan(p.dilation_angle);
     eccentric_term = p.eccentricity * p.curves.tensile_strength * tan_psi;
+    // The compression curve's peak (its first largest stress).
+    const auto &ys    = p.curves.compression.values();
+    crush_peak_strain = ys.empty() ? 0. :
+                          p.curves.compression.abscissae()[std::max_element(ys.begin(), ys.end()) - ys.begin()];
     if (!p.erosion)
       par.erosion_principal_strain = par.erosion_damage = 0.;
     // The history holds what this scene needs.
@@ -441,7 +461,7 @@ namespace anvil::MaterialModel
     h[i_rate]            = -1.;
     double d;
     tension(0., h[i_length], h[i_strength_factor], d, h[i_tensile_cohesion]);
-    compression(0., h[i_strength_factor], d, h[i_compressive_cohesion]);
+    compression(0., h[i_length], h[i_strength_factor], d, h[i_compressive_cohesion]);
   }
 
 
@@ -483,11 +503,12 @@ namespace anvil::MaterialModel
 
 
   void ConcreteDamagedPlasticity::compression(const double kappa_c,
+                                              const double h,
                                               const double f,
                                               double      &damage,
                                               double      &cohesion) const
   {
-    cohesion = compressive_cohesion(kappa_c, f);
+    cohesion = compressive_cohesion(kappa_c, h, f);
     damage   = damage_at(kappa_c, par.compressive_plastic_fraction, youngs_modulus(), cohesion);
   }
 
@@ -739,7 +760,7 @@ namespace anvil::MaterialModel
         if (on)
           {
             ct0[l] = tensile_cohesion(kt0[l], len[l], fs[l], dct0[l]);
-            cc0[l] = compressive_cohesion(kc0[l], fs[l], dcc0[l]);
+            cc0[l] = compressive_cohesion(kc0[l], len[l], fs[l], dcc0[l]);
           }
       }
     alignas(64) std::uint64_t going[W];
@@ -897,7 +918,7 @@ namespace anvil::MaterialModel
               if (ktn[l] != kt0[l])
                 ct[l] = tensile_cohesion(ktn[l], len[l], fs[l], dct[l]);
               if (kcn[l] != kc0[l])
-                cc[l] = compressive_cohesion(kcn[l], fs[l], dcc[l]);
+                cc[l] = compressive_cohesion(kcn[l], len[l], fs[l], dcc[l]);
             }
         }
       alignas(64) double Fn[W], dFn[W];
@@ -1113,7 +1134,7 @@ namespace anvil::MaterialModel
     // Damage, the scalar of ABAQUS: 1 - d = (1 - s_t d_c)(1 - s_c d_t).
     double d_t, d_c;
     tension(h[i_kappa_t], h[i_length], h[i_strength_factor], d_t, h[i_tensile_cohesion]);
-    compression(h[i_kappa_c], h[i_strength_factor], d_c, h[i_compressive_cohesion]);
+    compression(h[i_kappa_c], h[i_length], h[i_strength_factor], d_c, h[i_compressive_cohesion]);
     if (viscous)
       {
         // Duvaut-Lions: the viscous state relaxes towards the inviscid one.
@@ -1474,7 +1495,7 @@ namespace anvil::MaterialModel
           for (unsigned int i = 0; i < 3; ++i)
             principal[i][l] = p[i];
           c_t[l] = tensile_cohesion(h[l][i_kappa_t], h[l][i_length], h[l][i_strength_factor]);
-          c_c[l] = compressive_cohesion(h[l][i_kappa_c], h[l][i_strength_factor]);
+          c_c[l] = compressive_cohesion(h[l][i_kappa_c], h[l][i_length], h[l][i_strength_factor]);
         }
     // The damage variables at the new cohesions (tension() and
     // compression() without their lookups), zero where a lane stayed

@@ -58,7 +58,7 @@ int main()
       std::sqrt(1.5 * (a * a + b * b + c * c) + 3. * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
     const double ct   = model.tensile_cohesion(hist[M::i_kappa_t], hist[M::i_length],
                                              hist[M::i_strength_factor]);
-    const double cc   = model.compressive_cohesion(hist[M::i_kappa_c], hist[M::i_strength_factor]);
+    const double cc   = model.compressive_cohesion(hist[M::i_kappa_c], hist[M::i_length], hist[M::i_strength_factor]);
     const double beta = cc / ct * (1. - alpha) - (1. + alpha);
     return (q + 3. * alpha * mean + beta * std::max(s1, 0.) + gamma * std::min(s1, 0.)) /
              (1. - alpha) -

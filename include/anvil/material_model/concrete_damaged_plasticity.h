@@ -201,6 +201,10 @@ namespace anvil::MaterialModel
       bool           erosion              = false;
       double         erosion_principal_strain = 0;
       double         erosion_damage       = 0;
+      /** 'Crush band length' l_c: the length over which the compression
+          curve's softening branch holds; 0: none (the curve as given in
+          every element). Units: m. */
+      double         crush_band_length    = 0;
     };
 
     void set(const Parameters &p);
@@ -341,7 +345,7 @@ namespace anvil::MaterialModel
         @p kappa_t, characteristic length @p h and strength factor @p f. */
     void tension(double kappa_t, double h, double f, double &damage, double &cohesion) const;
     /** Static compressive damage and effective cohesion. */
-    void compression(double kappa_c, double f, double &damage, double &cohesion) const;
+    void compression(double kappa_c, double h, double f, double &damage, double &cohesion) const;
 
     /** The cohesion of tension() alone (the return mapping's iterations
         need no damage). */
@@ -351,10 +355,10 @@ namespace anvil::MaterialModel
       return tensile_cohesion(kappa_t, h, f, derivative);
     }
     /** The cohesion of compression() alone. */
-    double compressive_cohesion(const double kappa_c, const double f) const
+    double compressive_cohesion(const double kappa_c, const double h, const double f) const
     {
       double derivative;
-      return compressive_cohesion(kappa_c, f, derivative);
+      return compressive_cohesion(kappa_c, h, f, derivative);
     }
     /** The two cohesions with their derivatives by kappa (the return
         mapping's Newton iteration), each from one table search. */
@@ -368,13 +372,22 @@ namespace anvil::MaterialModel
       derivative    = (f * slope * h + (1. - b) * youngs_modulus()) / b;
       return c;
     }
-    double compressive_cohesion(const double kappa_c, const double f, double &derivative) const
+    /** (With a 'Crush band length' l_c, the inelastic strain beyond the
+        curve's peak e_p is read on the curve at e_p + (e_in - e_p) h / l_c
+        in an element of characteristic length @p h: the crushed element's
+        shortening beyond the peak is that of a band l_c long, and the
+        energy it dissipates per unit area does not depend on h.) */
+    double compressive_cohesion(const double kappa_c, const double h, const double f,
+                                double &derivative) const
     {
-      const double b    = par.compressive_plastic_fraction;
-      const double e_in = kappa_c / b;
+      const double b     = par.compressive_plastic_fraction;
+      const double e_in  = kappa_c / b;
+      const bool   band  = par.crush_band_length > 0 && e_in > crush_peak_strain;
+      const double scale = band ? h / par.crush_band_length : 1.;
+      const double e_c   = band ? crush_peak_strain + (e_in - crush_peak_strain) * scale : e_in;
       double       slope;
-      const double c = f * par.curves.compression(e_in, slope) + (1. - b) * youngs_modulus() * e_in;
-      derivative    = (f * slope + (1. - b) * youngs_modulus()) / b;
+      const double c = f * par.curves.compression(e_c, slope) + (1. - b) * youngs_modulus() * e_in;
+      derivative    = (f * slope * scale + (1. - b) * youngs_modulus()) / b;
       return c;
     }
 
@@ -562,6 +575,8 @@ namespace anvil::MaterialModel
     Parameters par;
     mutable unsigned long lubliner_returns = 0, lubliner_evaluations = 0;
     double     alpha = 0, gamma = 0, tan_psi = 0, eccentric_term = 0;
+    /** The inelastic strain at the compression curve's peak (set()). */
+    double     crush_peak_strain = 0;
 
     /** The history's optional parts, after the n_base_history values
         every point has: the total strain and its largest principal value
