@@ -179,20 +179,26 @@ namespace anvil
     for (const auto w : wishes)
       finer += w > 0;
     // A round of joins alone may be all refused (a join whose neighbours
-    // the one-level rule holds finer): tried first on a copy of the mesh,
-    // it then costs no checkpoint and no new mesh, and the refused ones
-    // are not asked for again on this mesh.
+    // the one-level rule holds finer): asked first of the serial mesh
+    // (deal.II's flags only, cleared again), it then costs no checkpoint
+    // and no new mesh, and the refused ones are not asked for again on
+    // this mesh.
     if (finer == 0 && serial_mesh)
       {
-        Triangulation<3> trial(Triangulation<3>::limit_level_difference_at_vertices);
-        trial.copy_triangulation(*serial_mesh);
         std::vector<Triangulation<3>::active_cell_iterator> cells;
-        for (const auto &cell : trial.active_cell_iterators())
+        for (const auto &cell : serial_mesh->active_cell_iterators())
           cells.push_back(cell);
         for (const auto w : wishes)
           cells[-w - 1]->set_coarsen_flag();
-        trial.prepare_coarsening_and_refinement();
-        if (std::none_of(wishes.begin(), wishes.end(), [&](const auto w) { return cells[-w - 1]->coarsen_flag_set(); }))
+        serial_mesh->prepare_coarsening_and_refinement();
+        const bool any_kept =
+          std::any_of(wishes.begin(), wishes.end(), [&](const auto w) { return cells[-w - 1]->coarsen_flag_set(); });
+        for (const auto &cell : cells)
+          {
+            cell->clear_coarsen_flag();
+            cell->clear_refine_flag();
+          }
+        if (!any_kept)
           {
             pcout << "  adapt at t = " << time << " s, step " << step_number << ": the " << wishes.size() / 8
                   << " group(s) of eight asked to be joined stay (the one-level rule keeps their neighbours "

@@ -284,10 +284,11 @@ namespace anvil
     // each process holds its share of that kind, and of the change. The
     // same graph, weights and seed on every process give every process the
     // same partition.
+    constexpr unsigned int n_kinds = 2; // one-point (and rigid), fully integrated
+
     void partition_kinds_by_metis(Triangulation<3>                 &serial,
                                   const std::vector<unsigned long> &weight,
                                   const std::vector<unsigned int>  &kind,
-                                  const unsigned int                n_kinds,
                                   const unsigned int                n_ranks)
     {
       idx_t n = serial.n_active_cells();
@@ -350,29 +351,21 @@ namespace anvil
       throw InputError(parameters.scene_file + ": the scene has " + std::to_string(serial.n_active_cells()) +
                        " element(s), fewer than the " + std::to_string(n_ranks) +
                        " MPI processes: run it on at most as many processes as elements");
+    // Each cell's weight and kind (1: fully integrated, 0: the others).
     std::vector<unsigned long> weight(serial.n_active_cells());
+    std::vector<unsigned int>  kind(serial.n_active_cells());
     for (const auto &cell : serial.active_cell_iterators())
       {
         const Body &body = bodies[cell->material_id()];
-        weight[cell->active_cell_index()] =
-          body.is_rigid() ? 100 :
-          body.integration_of(cell) == Element::Integration::full ? full_integration_weight :
-                                                                              1000;
+        const bool  full = !body.is_rigid() && body.integration_of(cell) == Element::Integration::full;
+        weight[cell->active_cell_index()] = body.is_rigid() ? 100 : full ? full_integration_weight : 1000;
+        kind[cell->active_cell_index()]   = full ? 1 : 0;
       }
     if (partition_weights.size() == weight.size())
       weight = partition_weights;
     if (n_ranks > 1 && parameters.partitioner == "metis per kind")
       {
-        // The kinds: one-point elements (and a rigid body's), fully
-        // integrated ones.
-        std::vector<unsigned int> kind(serial.n_active_cells());
-        for (const auto &cell : serial.active_cell_iterators())
-          {
-            const Body &body = bodies[cell->material_id()];
-            kind[cell->active_cell_index()] =
-              !body.is_rigid() && body.integration_of(cell) == Element::Integration::full ? 1 : 0;
-          }
-        partition_kinds_by_metis(serial, weight, kind, 2, n_ranks);
+        partition_kinds_by_metis(serial, weight, kind, n_ranks);
         return;
       }
     // A graph partitioner (METIS, Trilinos' Zoltan) on the cells' face

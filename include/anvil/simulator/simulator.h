@@ -518,7 +518,7 @@ namespace anvil
     std::set<unsigned long> coarsening_refused;
     /** The serial mesh the run's elements were cut from (after the
         regions and the rounds), kept where the run adapts: a round of
-        joins alone is tried on a copy first. */
+        joins alone is first asked of its flags. */
     std::unique_ptr<dealii::Triangulation<3>> serial_mesh;
   };
 
