@@ -30,6 +30,7 @@ namespace
     "       anvil --resume-from DIR SCENE.prm   a new stage: SCENE from the state in checkpoint DIR\n"
     "       anvil --print-cost SCENE.prm   estimate steps, element-cycles and wall time; run nothing\n"
     "       anvil --check SCENE.prm    read the scene and build its mesh, contact surfaces and boundary conditions; run nothing\n"
+    "       anvil --check A.prm B.k ...   the same for each scene or deck in turn; exit status of the first that fails\n"
     "       anvil DECK.k | DECK.inp    run an LS-DYNA keyword deck or a whole ABAQUS/Explicit deck as it comes\n"
     "       anvil --translate DECK     print the scene a deck translates to (its mesh stays in the deck)\n"
     "       anvil DECK.k --case ID     run case ID of a deck with *CASE blocks\n"
@@ -52,7 +53,8 @@ namespace
   struct CommandLine
   {
     std::string              file, resume_from, mode, error;
-    std::vector<std::string> overrides;
+    std::vector<std::string> files, overrides; // files: --check takes several
+
     long                     case_id = 0;
     bool help = false, version = false, print_parameters = false, check = false, driver = false, resume = false,
          cost = false, translate = false;
@@ -110,10 +112,11 @@ namespace
       }
     if (vm.count("file"))
       {
-        const auto &files = vm["file"].as<std::vector<std::string>>();
-        if (files.size() > 1)
-          c.error = "expected one scene file, got '" + files[0] + "' and '" + files[1] + "'";
-        c.file = files[0];
+        c.files = vm["file"].as<std::vector<std::string>>();
+        if (c.files.size() > 1 && !c.check)
+          c.error = "expected one scene file, got '" + c.files[0] + "' and '" + c.files[1] +
+                    "' (only --check takes several)";
+        c.file = c.files[0];
       }
     for (const char *mode : {"check", "material-point", "resume", "resume-from", "print-cost", "translate"})
       if (vm.count(mode))
@@ -127,8 +130,94 @@ namespace
 } // namespace
 
 
-int main(int argc, char **argv)
+namespace
 {
+  /**
+   * Run, check, translate or cost one scene or deck as the command line
+   * asks; the exit status.
+   */
+int run_file(const CommandLine &cl, const std::string &file, const bool root) {
+  const std::string resume_from = cl.resume_from;
+  const std::vector<std::string> &overrides = cl.overrides;
+  const bool driver = cl.driver, resume = cl.resume, cost = cl.cost,
+             translate = cl.translate, check_only = cl.check;
+  // Input errors and numerical failures arise on every rank together (they
+  // follow from replicated input or global reductions), so every rank can
+  // return; anything else aborts the whole job rather than leaving ranks
+  // waiting in a collective.
+  try {
+    if (translate) {
+      if (!anvil::Deck::is_deck(file))
+        throw anvil::InputError(
+            file +
+            ": --translate takes a deck (.k, .key, .dyn: LS-DYNA keyword; "
+            ".inp: ABAQUS)");
+      const auto t = anvil::Deck::translate(file, file);
+      if (root) {
+        if (!t.ignored.empty())
+          std::cout << "# Not translated (output or settings Anvil answers its "
+                       "own way): "
+                    << t.ignored << "\n";
+        if (!t.differs.empty())
+          std::cout << "# Where Anvil's model differs from the deck's code: "
+                    << t.differs << "\n";
+        std::cout << t.text << std::flush;
+      }
+      return 0;
+    }
+    if (driver) {
+      // One material point: rank 0 alone does the work.
+      if (root) {
+        anvil::MaterialModel::MaterialPointDriver d(file);
+        std::cout << "anvil: material point written to " << d.run()
+                  << std::endl;
+      }
+      return 0;
+    }
+    if (cost)
+      anvil::Simulator(file, MPI_COMM_WORLD, overrides).print_cost();
+    else if (!resume_from.empty())
+      anvil::run_simulator(file, MPI_COMM_WORLD, overrides, false, resume_from);
+    else
+      anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume,
+                                   check_only);
+  } catch (const anvil::InputError &e) {
+    if (root)
+      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
+                << std::endl;
+    return 2;
+  } catch (const anvil::NumericalFailure &e) {
+    if (root)
+      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
+                << std::endl;
+    return 3;
+  } catch (const anvil::Interrupted &e) {
+    if (root)
+      std::cerr << "anvil: " << e.what() << std::endl;
+    return 5;
+  } catch (const anvil::OutputError &e) {
+    // Histories are rank 0's: the other ranks learn of the failure in a
+    // collective and return with it; a frame or summary that failed on
+    // one rank alone takes the job down.
+    if (root)
+      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
+                << std::endl;
+    return 4;
+  } catch (const dealii::ExceptionBase &e) {
+    std::cerr << "anvil: error: "
+              << anvil::printable_excerpt(anvil::one_line_message(e))
+              << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  } catch (const std::exception &e) {
+    std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
+              << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  return 0;
+}
+} // namespace
+
+int main(int argc, char **argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
 
   // A study launches its runs as processes of their own (each possibly an
@@ -208,12 +297,10 @@ int main(int argc, char **argv)
                   << " ('anvil --help' shows the usage)\n";
       return 2;
     }
-  const std::string                file = cl.file, resume_from = cl.resume_from;
+  const std::string                file = cl.file;
   const std::vector<std::string>  &overrides = cl.overrides;
-  const bool check_only = cl.check, driver = cl.driver, resume = cl.resume, cost = cl.cost,
-             translate = cl.translate;
   anvil::KeywordFile::chosen_case() = cl.case_id;
-  if (file.empty() || (driver && !overrides.empty()))
+  if (file.empty() || (cl.driver && !overrides.empty()))
     {
       if (root)
         std::cerr << "anvil: error: "
@@ -221,82 +308,14 @@ int main(int argc, char **argv)
                   << " ('anvil --help' shows the usage)\n";
       return 2;
     }
-
-  // Input errors and numerical failures arise on every rank together (they
-  // follow from replicated input or global reductions), so every rank can
-  // return; anything else aborts the whole job rather than leaving ranks
-  // waiting in a collective.
-  try
+  // '--check' of several files checks each in turn (its own lines, its own
+  // error) and exits with the status of the first that failed.
+  int status = 0;
+  for (const std::string &f : cl.files)
     {
-      if (translate)
-        {
-          if (!anvil::Deck::is_deck(file))
-            throw anvil::InputError(file + ": --translate takes a deck (.k, .key, .dyn: LS-DYNA keyword; "
-                                    ".inp: ABAQUS)");
-          const auto t = anvil::Deck::translate(file, file);
-          if (root)
-            {
-              if (!t.ignored.empty())
-                std::cout << "# Not translated (output or settings Anvil answers its own way): " << t.ignored << "\n";
-              if (!t.differs.empty())
-                std::cout << "# Where Anvil's model differs from the deck's code: " << t.differs << "\n";
-              std::cout << t.text << std::flush;
-            }
-          return 0;
-        }
-      if (driver)
-        {
-          // One material point: rank 0 alone does the work.
-          if (root)
-            {
-              anvil::MaterialModel::MaterialPointDriver d(file);
-              std::cout << "anvil: material point written to " << d.run() << std::endl;
-            }
-          return 0;
-        }
-      if (cost)
-        anvil::Simulator(file, MPI_COMM_WORLD, overrides).print_cost();
-      else if (!resume_from.empty())
-        anvil::run_simulator(file, MPI_COMM_WORLD, overrides, false, resume_from);
-      else
-        anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume, check_only);
+      const int s = run_file(cl, f, root);
+      if (status == 0)
+        status = s;
     }
-  catch (const anvil::InputError &e)
-    {
-      if (root)
-        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-      return 2;
-    }
-  catch (const anvil::NumericalFailure &e)
-    {
-      if (root)
-        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-      return 3;
-    }
-  catch (const anvil::Interrupted &e)
-    {
-      if (root)
-        std::cerr << "anvil: " << e.what() << std::endl;
-      return 5;
-    }
-  catch (const anvil::OutputError &e)
-    {
-      // Histories are rank 0's: the other ranks learn of the failure in a
-      // collective and return with it; a frame or summary that failed on
-      // one rank alone takes the job down.
-      if (root)
-        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-      return 4;
-    }
-  catch (const dealii::ExceptionBase &e)
-    {
-      std::cerr << "anvil: error: " << anvil::printable_excerpt(anvil::one_line_message(e)) << std::endl;
-      MPI_Abort(MPI_COMM_WORLD, 1);
-    }
-  catch (const std::exception &e)
-    {
-      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-      MPI_Abort(MPI_COMM_WORLD, 1);
-    }
-  return 0;
+  return status;
 }

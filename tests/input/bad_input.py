@@ -149,6 +149,16 @@ r = subprocess.run([args.anvil, os.path.join(args.work_dir, "unknown_body.prm"),
                    cwd=args.work_dir, capture_output=True, text=True, timeout=120)
 code, err = r.returncode, r.stderr
 c.check_true("'anvil SCENE.prm --check' reads the options after the file", code == 2 and "blok" in err, err.strip())
+# Several scenes checked in one call: the bad one's line, the good one still
+# checked, the exit status of the one that failed; a run takes one scene.
+r = subprocess.run([args.anvil, "--check", os.path.join(args.work_dir, "unknown_body.prm"), rod],
+                   cwd=args.work_dir, capture_output=True, text=True, timeout=120)
+c.check_true("'anvil --check BAD.prm GOOD.prm': exit 2, an error line for BAD, GOOD valid",
+             r.returncode == 2 and "blok" in r.stderr and (rod + ": scene ") in r.stdout, r.stderr.strip())
+r = subprocess.run([args.anvil, rod, rod], cwd=args.work_dir, capture_output=True, text=True, timeout=60)
+lines = [l for l in r.stderr.splitlines() if l.strip()]
+c.check_true("two scenes to run: exit 2 with one line", r.returncode == 2 and len(lines) == 1 and
+             "only --check takes several" in lines[0], r.stderr)
 for name, argv in (("unknown option", ["--frobnicate", "x.prm"]), ("no scene file", [])):
     r = subprocess.run([args.anvil, *argv], cwd=args.work_dir, capture_output=True, text=True, timeout=60)
     lines = [l for l in r.stderr.splitlines() if l.strip()]
