@@ -445,6 +445,14 @@ namespace anvil
                         "A boundary condition whose largest reaction summary.csv "
                         "reports as axial_capacity_N (an axial push to failure); "
                         "empty: none.");
+      prm.declare_entry("End capacity drop",
+                        "0",
+                        Patterns::Double(0., 1.),
+                        "End the run before 'End time' once the reaction of the "
+                        "'Capacity support' has stayed below its peak less this "
+                        "fraction for 'End quiet time' (a push to failure that is "
+                        "past its capacity; 0.5: below half the peak), checked at "
+                        "the history rows; 0: off. Units: none.");
       prm.declare_entry("Intact axial capacity",
                         "0",
                         Patterns::Double(0.),
@@ -842,6 +850,10 @@ namespace anvil
         parameters.end_criterion.kinetic_fraction       = prm.get_double("End kinetic energy fraction");
         parameters.end_criterion.quiet_time             = prm.get_double("End quiet time");
         parameters.end_criterion.kinetic_internal_ratio = prm.get_double("End kinetic to internal ratio");
+        parameters.end_criterion.capacity_drop          = prm.get_double("End capacity drop");
+        if (parameters.end_criterion.capacity_drop > 0 && prm.get("Capacity support").empty())
+          throw InputError("entry 'Simulation/End capacity drop': needs a 'Capacity support' (the boundary "
+                           "condition whose reaction it follows); 0 switches it off");
         // The pairs and the probe these entries name, by index.
         const auto index_of = [](const std::string &entry, const std::string &name,
                                  const std::vector<std::string> &names, const std::string &list) {

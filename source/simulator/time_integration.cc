@@ -626,6 +626,33 @@ namespace anvil
           {
             write_history(time, last ? 0. : current_dt);
             next_history += parameters.history_interval;
+            // A push past its capacity: the row's reaction of the capacity
+            // support (summed over the processes, the same on each) below
+            // its bound for 'End quiet time' (not the dips of the wave that
+            // the push's start sends through the member, rho c v A, which
+            // can fall below half their first peak for a fraction of a ms).
+            if (const double drop = parameters.end_criterion.capacity_drop; drop > 0 && !last)
+              {
+                const auto &conditions = constraints->get_conditions();
+                for (unsigned int b = 0; b < conditions.size(); ++b)
+                  if (conditions[b].name == constraints->capacity_support() &&
+                      b < constraints->peak_reactions().size())
+                    {
+                      const double *r    = &constraints->reactions()[3 * b];
+                      const double  now  = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+                      const double  peak = constraints->peak_reactions()[b];
+                      if (!(peak > 0 && now <= (1. - drop) * peak))
+                        summary.capacity_below_since = -1;
+                      else if (summary.capacity_below_since < 0)
+                        summary.capacity_below_since = time;
+                      if (summary.capacity_below_since >= 0 &&
+                          time - summary.capacity_below_since >= parameters.end_criterion.quiet_time - eps)
+                        {
+                          quiet_end                     = true;
+                          summary.capacity_end_reaction = now;
+                        }
+                    }
+              }
           }
         report_progress(clock, last);
         if (last)
@@ -974,6 +1001,11 @@ namespace anvil
           pcout << end.kinetic_internal_ratio << " E_int";
         pcout << " for " << end.quiet_time << " s): the run ends before its end time" << std::endl;
       }
+    if (summary.capacity_end_reaction > 0)
+      pcout << "  the push is past its capacity (the reaction of '" << constraints->capacity_support() << "' fell to "
+            << summary.capacity_end_reaction << " N, below " << 1. - parameters.end_criterion.capacity_drop
+            << " of its peak for " << parameters.end_criterion.quiet_time
+            << " s): the run ends before its end time" << std::endl;
     pcout << "  done: " << step_number << " steps to t = " << time
           << " s, energy balance error " << balance.balance_error;
     if (solids->n_eroded() > 0)

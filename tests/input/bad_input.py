@@ -102,10 +102,12 @@ c.check_true("unknown body: exit 2 with one line naming it", code == 2 and len(l
 # 'Maximum time step' with a comma outside parentheses ('1,2' for 1.2), and
 # one that is no expression.
 for name, value, words in (("max_dt_comma", "1,2", ["Maximum time step", "comma"]),
-                           ("max_dt_garbage", "1e-7 +* t", ["Maximum time step"])):
+                           ("max_dt_garbage", "1e-7 +* t", ["Maximum time step"]),
+                           ("capacity_drop_alone", None, ["End capacity drop", "Capacity support"])):
     prm = write_scene(os.path.join(args.work_dir, name + ".prm"),
                       text=block.format(mesh="", nu="0.3", extra="") +
-                      f"subsection Simulation\n  set Maximum time step = {value}\nend\n")
+                      (f"subsection Simulation\n  set Maximum time step = {value}\nend\n" if value else
+                       "subsection Simulation\n  set End capacity drop = 0.5\nend\n"))
     code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
     lines = [l for l in err.splitlines() if l.strip()]
     print(f"    {name}: {lines[-1] if lines else ''}")

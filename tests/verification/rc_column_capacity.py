@@ -58,6 +58,30 @@ peak_time = r["time"][max(range(len(r["time"])), key=lambda i: abs(r["top_fz"][i
 i = min(range(len(e["time"])), key=lambda k: abs(e["time"][k] - peak_time))
 c.check_below(f"quasi-static: kinetic / internal energy at the peak (t = {peak_time * 1e3:.2f} ms)",
               e["kinetic"][i] / e["internal"][i], 0.05)
+# 'End capacity drop = 0.5' with 'End quiet time = 0.002' (the shipped
+# scene): the push stops at the first history row 2 ms after the reaction
+# fell below half its peak and stayed there. The same push to its end time
+# gives the same rows up to there and the same P_intact, bit for bit.
+code, err = run(os.path.join(scenes, "rc_column_axial_capacity_coarse.prm"), "--set", "Simulation/End capacity drop=0",
+                "--set", "Simulation/Name=whole_push")
+w = read_csv(os.path.join(work, "output", "whole_push", "reactions.csv"))
+stopped = summary("rc_column_axial_capacity_coarse")
+magnitude, times = [abs(f) for f in r["top_fz"]], r["time"]
+below = [0 < max(magnitude[:k + 1]) and magnitude[k] <= 0.5 * max(magnitude[:k + 1]) for k in range(len(magnitude))]
+last = len(magnitude) - 2  # the row that ended the push (the last row is the final step, off the interval)
+since = last
+while since > 0 and below[since - 1]:
+    since -= 1
+held = times[last] - times[since]
+c.check_true("the push ends at the first row 2 ms below half its peak (End capacity drop = 0.5)",
+             code == 0 and stopped["ended_by_criterion"] == 1 and below[last] and held >= 0.002 - 1e-9 and
+             times[last - 1] - times[since] < 0.002 - 1e-9 and len(w["time"]) > len(r["time"]),
+             f"{len(r['time'])} rows against {len(w['time'])} to the end time; below half the peak from "
+             f"{1e3 * times[since]:.3f} ms to {1e3 * times[last]:.3f} ms")
+n = len(r["time"]) - 1  # the last row is the final step, off the history interval
+c.check_true("P_intact and the rows before the stop as the whole push's, bit for bit",
+             summary("whole_push")["axial_capacity_N"] == p_intact and
+             all(w[k][:n] == r[k][:n] for k in r), f"P_intact {p_intact:.6e} N; {n} rows compared")
 prm_value = float([l.split("=")[1] for l in open(os.path.join(scenes, "rc_column_residual_capacity_coarse.prm"))
                    if l.strip().startswith("set Intact axial capacity")][0])
 c.check("'Intact axial capacity' of the residual scene is this P_intact", prm_value, p_intact, 0.005, relative=True)

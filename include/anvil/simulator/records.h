@@ -87,6 +87,9 @@ namespace anvil
     /** The contact pairs that must carry no force, by index ('End contact
         pairs'; every pair when the entry is empty). */
     std::vector<unsigned int> pairs;
+    /** The push ends once the capacity support's reaction has fallen by
+        this fraction of its peak ('End capacity drop'); 0: not asked. */
+    double                    capacity_drop = 0;
     bool                      asked() const
     {
       return kinetic_fraction > 0 || kinetic_internal_ratio > 0;
@@ -122,6 +125,11 @@ namespace anvil
     double       quiet_since = -1;
     unsigned int quiet_rows = 0;
     bool   ended_early = false;
+    /** Since when the capacity support's reaction has been below the
+        'End capacity drop' bound (-1: it is not), and the reaction at the
+        row that ended the push (0: the push did not end so). */
+    double capacity_below_since  = -1;
+    double capacity_end_reaction = 0;
     /** Every probe's peak and last displacement magnitude and its sum over
         the quiet period's rows, in the order of 'Probes' (summary.csv's
         peak_displacement_NAME_m, residual_displacement_NAME_m). */
@@ -135,7 +143,7 @@ namespace anvil
     void serialize(Archive &ar)
     {
       ar &initial_kinetic &max_hourglass_ratio &max_balance_error &peak_reaction &element_steps
-        &contact_limited_steps &quiet_since &quiet_rows &ended_early &probe_peak &probe_last &probe_quiet_sum
+        &contact_limited_steps &quiet_since &quiet_rows &ended_early &capacity_below_since &capacity_end_reaction &probe_peak &probe_last &probe_quiet_sum
           &pair_peak_force &pair_contact_start &pair_contact_end;
     }
   };
