@@ -87,6 +87,19 @@ namespace anvil
       else
         word += (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) ? '?' : c;
     flush();
+    // A line quoted whole (deal.II's "The line <...>", which may be a long
+    // continued line of a stage's changes): its start and its end.
+    for (std::size_t open = out.find('<'); open != std::string::npos; open = out.find('<', open + 1))
+      {
+        const std::size_t close = out.find('>', open);
+        if (close == std::string::npos)
+          break;
+        if (close - open > 160)
+          out = out.substr(0, open + 101) + " ... " + out.substr(close - 40);
+      }
+    // One line of at most 600 characters, however long the paths it names.
+    if (out.size() > 600)
+      out = out.substr(0, 420) + " ... " + out.substr(out.size() - 170);
     return out;
   }
 

@@ -151,6 +151,18 @@ r = subprocess.run([args.anvil, os.path.join(args.work_dir, "unknown_body.prm"),
                    cwd=args.work_dir, capture_output=True, text=True, timeout=120)
 code, err = r.returncode, r.stderr
 c.check_true("'anvil SCENE.prm --check' reads the options after the file", code == 2 and "blok" in err, err.strip())
+# A malformed line continued over many lines (a stage's changes): one
+# error line of at most 600 characters, the quoted line shortened.
+prm = write_scene(os.path.join(args.work_dir, "long_line.prm"),
+                  text=block.format(mesh="", nu="0.3", extra="") +
+                  "subsection Simulation\n  0.5 Simulation/Mass damping=0; \\\n" +
+                  "".join(f"    Simulation/End time={k}; \\\n" for k in range(60)) + "    Simulation/Plots=false\nend\n")
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir, extra_args=["--check"])
+lines = [l for l in err.splitlines() if l.strip()]
+c.check_true("a malformed line of 2,000 characters: exit 2, one line of at most 600 characters naming it",
+             code == 2 and len(lines) == 1 and len(lines[0]) <= 600 and "long_line.prm" in lines[0] and
+             "could not be parsed" in lines[0], f"{len(lines[0]) if lines else 0} characters: "
+             f"{lines[0][:200] if lines else ''}")
 # Several scenes checked in one call: the bad one's line, the good one still
 # checked, the exit status of the one that failed; a run takes one scene.
 r = subprocess.run([args.anvil, "--check", os.path.join(args.work_dir, "unknown_body.prm"), rod],

@@ -83,7 +83,9 @@ namespace anvil
    * A message fit to print on one line: bytes that are not printable
    * become '?', and a run of more than 120 characters without a space (a
    * value pasted whole into the message) keeps its first 80 and last 30
-   * characters around "...".
+   * characters around "...", a line quoted whole between '<' and '>'
+   * keeps its first 100 and last 40, and the whole message is at most 600
+   * characters (its first 420 and last 170 around " ... ").
    */
   std::string printable_excerpt(const std::string &message);
 
