@@ -6,11 +6,13 @@ ranks polling (mpi_yield_when_idle = 0, Open MPI's default, which Anvil
 keeps) and yielding the core (1).
 
     /usr/bin/python3 benchmarks/shared_machine.py --anvil build/anvil [--scene S.prm] [--repeat N]
-                                                  [--rebalance INTERVAL]
+                                                  [--rebalance INTERVAL] [--nice N]
 
 --rebalance: the two-process runs partition anew during the run
 ('Rebalance interval = INTERVAL', threshold 1.1), so that the process
-sharing its core with the busy job gets fewer elements.
+sharing its core with the busy job gets fewer elements. --nice: the busy
+job runs at that niceness (19: a low-priority job, as the performance
+issue's was; 0, the default: a job of the same priority as the run).
 
 Default scene: prm/rc_column_impact/rc_column_impact_coarse.prm to 5 ms
 (--end-time; doc/performance.md quotes 12 ms).
@@ -30,7 +32,9 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def spin(stop):
+def spin(stop, niceness=0):
+    if niceness:
+        os.nice(niceness)
     x = 0
     while not stop.is_set():
         x += 1
@@ -61,12 +65,13 @@ def main():
     p.add_argument("--end-time", default="0.005")
     p.add_argument("--repeat", type=int, default=1)
     p.add_argument("--rebalance", default=None)
+    p.add_argument("--nice", type=int, default=0)
     a = p.parse_args()
     anvil, scene = os.path.abspath(a.anvil), os.path.abspath(a.scene)
     with tempfile.TemporaryDirectory() as work:
         for busy in (False, True):
             stop = multiprocessing.Event()
-            spinner = multiprocessing.Process(target=spin, args=(stop,)) if busy else None
+            spinner = multiprocessing.Process(target=spin, args=(stop, a.nice)) if busy else None
             if spinner:
                 spinner.start()
             try:
