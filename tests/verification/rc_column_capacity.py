@@ -82,6 +82,17 @@ n = len(r["time"]) - 1  # the last row is the final step, off the history interv
 c.check_true("P_intact and the rows before the stop as the whole push's, bit for bit",
              summary("whole_push")["axial_capacity_N"] == p_intact and
              all(w[k][:n] == r[k][:n] for k in r), f"P_intact {p_intact:.6e} N; {n} rows compared")
+# The same push on two processes: the end decided on the reactions summed
+# over both, at the same row, with the same P_intact (sums in another
+# order: to round-off).
+r2 = subprocess.run(["mpirun", "-np", "2", "--oversubscribe", args.anvil,
+                     os.path.join(scenes, "rc_column_axial_capacity_coarse.prm"), *quiet,
+                     "--set", "Simulation/Name=push_np2"], cwd=work, capture_output=True, text=True)
+rows2 = read_csv(os.path.join(work, "output", "push_np2", "reactions.csv"))["time"] if r2.returncode == 0 else []
+p2 = summary("push_np2")["axial_capacity_N"] if r2.returncode == 0 else 0
+c.check_true("np = 2: the push ends at np = 1's row, P_intact to round-off",
+             r2.returncode == 0 and rows2 == r["time"] and abs(p2 - p_intact) <= 1e-9 * p_intact,
+             f"{len(rows2)} rows against {len(r['time'])}; P_intact {p2:.10e} against {p_intact:.10e} N")
 prm_value = float([l.split("=")[1] for l in open(os.path.join(scenes, "rc_column_residual_capacity_coarse.prm"))
                    if l.strip().startswith("set Intact axial capacity")][0])
 c.check("'Intact axial capacity' of the residual scene is this P_intact", prm_value, p_intact, 0.005, relative=True)
