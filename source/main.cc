@@ -54,7 +54,6 @@ namespace
   {
     std::string              file, resume_from, mode, error;
     std::vector<std::string> files, overrides; // files: --check takes several
-
     long                     case_id = 0;
     bool help = false, version = false, print_parameters = false, check = false, driver = false, resume = false,
          cost = false, translate = false;
@@ -136,88 +135,95 @@ namespace
    * Run, check, translate or cost one scene or deck as the command line
    * asks; the exit status.
    */
-int run_file(const CommandLine &cl, const std::string &file, const bool root) {
-  const std::string resume_from = cl.resume_from;
-  const std::vector<std::string> &overrides = cl.overrides;
-  const bool driver = cl.driver, resume = cl.resume, cost = cl.cost,
-             translate = cl.translate, check_only = cl.check;
-  // Input errors and numerical failures arise on every rank together (they
-  // follow from replicated input or global reductions), so every rank can
-  // return; anything else aborts the whole job rather than leaving ranks
-  // waiting in a collective.
-  try {
-    if (translate) {
-      if (!anvil::Deck::is_deck(file))
-        throw anvil::InputError(
-            file +
-            ": --translate takes a deck (.k, .key, .dyn: LS-DYNA keyword; "
-            ".inp: ABAQUS)");
-      const auto t = anvil::Deck::translate(file, file);
-      if (root) {
-        if (!t.ignored.empty())
-          std::cout << "# Not translated (output or settings Anvil answers its "
-                       "own way): "
-                    << t.ignored << "\n";
-        if (!t.differs.empty())
-          std::cout << "# Where Anvil's model differs from the deck's code: "
-                    << t.differs << "\n";
-        std::cout << t.text << std::flush;
+  int run_file(const CommandLine &cl, const std::string &file, const bool root)
+  {
+    const std::string               resume_from = cl.resume_from;
+    const std::vector<std::string> &overrides   = cl.overrides;
+    const bool driver = cl.driver, resume = cl.resume, cost = cl.cost, translate = cl.translate,
+               check_only = cl.check;
+    // Input errors and numerical failures arise on every rank together (they
+    // follow from replicated input or global reductions), so every rank can
+    // return; anything else aborts the whole job rather than leaving ranks
+    // waiting in a collective.
+    try
+      {
+        if (translate)
+          {
+            if (!anvil::Deck::is_deck(file))
+              throw anvil::InputError(file + ": --translate takes a deck (.k, .key, .dyn: LS-DYNA keyword; "
+                                      ".inp: ABAQUS)");
+            const auto t = anvil::Deck::translate(file, file);
+            if (root)
+              {
+                if (!t.ignored.empty())
+                  std::cout << "# Not translated (output or settings Anvil answers its own way): " << t.ignored << "\n";
+                if (!t.differs.empty())
+                  std::cout << "# Where Anvil's model differs from the deck's code: " << t.differs << "\n";
+                std::cout << t.text << std::flush;
+              }
+            return 0;
+          }
+        if (driver)
+          {
+            // One material point: rank 0 alone does the work.
+            if (root)
+              {
+                anvil::MaterialModel::MaterialPointDriver d(file);
+                std::cout << "anvil: material point written to " << d.run() << std::endl;
+              }
+            return 0;
+          }
+        if (cost)
+          anvil::Simulator(file, MPI_COMM_WORLD, overrides).print_cost();
+        else if (!resume_from.empty())
+          anvil::run_simulator(file, MPI_COMM_WORLD, overrides, false, resume_from);
+        else
+          anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume, check_only);
       }
-      return 0;
-    }
-    if (driver) {
-      // One material point: rank 0 alone does the work.
-      if (root) {
-        anvil::MaterialModel::MaterialPointDriver d(file);
-        std::cout << "anvil: material point written to " << d.run()
-                  << std::endl;
+    catch (const anvil::InputError &e)
+      {
+        if (root)
+          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
+        return 2;
       }
-      return 0;
-    }
-    if (cost)
-      anvil::Simulator(file, MPI_COMM_WORLD, overrides).print_cost();
-    else if (!resume_from.empty())
-      anvil::run_simulator(file, MPI_COMM_WORLD, overrides, false, resume_from);
-    else
-      anvil::run_scene_with_stages(file, overrides, MPI_COMM_WORLD, resume,
-                                   check_only);
-  } catch (const anvil::InputError &e) {
-    if (root)
-      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
-                << std::endl;
-    return 2;
-  } catch (const anvil::NumericalFailure &e) {
-    if (root)
-      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
-                << std::endl;
-    return 3;
-  } catch (const anvil::Interrupted &e) {
-    if (root)
-      std::cerr << "anvil: " << e.what() << std::endl;
-    return 5;
-  } catch (const anvil::OutputError &e) {
-    // Histories are rank 0's: the other ranks learn of the failure in a
-    // collective and return with it; a frame or summary that failed on
-    // one rank alone takes the job down.
-    if (root)
-      std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
-                << std::endl;
-    return 4;
-  } catch (const dealii::ExceptionBase &e) {
-    std::cerr << "anvil: error: "
-              << anvil::printable_excerpt(anvil::one_line_message(e))
-              << std::endl;
-    MPI_Abort(MPI_COMM_WORLD, 1);
-  } catch (const std::exception &e) {
-    std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what())
-              << std::endl;
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    catch (const anvil::NumericalFailure &e)
+      {
+        if (root)
+          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
+        return 3;
+      }
+    catch (const anvil::Interrupted &e)
+      {
+        if (root)
+          std::cerr << "anvil: " << e.what() << std::endl;
+        return 5;
+      }
+    catch (const anvil::OutputError &e)
+      {
+        // Histories are rank 0's: the other ranks learn of the failure in a
+        // collective and return with it; a frame or summary that failed on
+        // one rank alone takes the job down.
+        if (root)
+          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
+        return 4;
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(anvil::one_line_message(e)) << std::endl;
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
+        MPI_Abort(MPI_COMM_WORLD, 1);
+      }
+    return 0;
   }
-  return 0;
-}
 } // namespace
 
-int main(int argc, char **argv) {
+
+int main(int argc, char **argv)
+{
   const std::vector<std::string> args(argv + 1, argv + argc);
 
   // A study launches its runs as processes of their own (each possibly an

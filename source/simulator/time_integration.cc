@@ -27,6 +27,45 @@ namespace anvil
 {
   using namespace dealii;
 
+  namespace
+  {
+    /**
+     * 'End capacity drop' at a history row: whether the reaction of the
+     * capacity support (summed over the processes, the same on each) has
+     * stayed below its peak less the drop for 'End quiet time' (not the
+     * dips of the wave the push's start sends through the member, rho c v
+     * A, which fall below half their first peak for a fraction of a ms).
+     * Records since when it is below, and the reaction that ends the run.
+     */
+    bool capacity_past_peak(const ConstraintsAndLoads &constraints,
+                            const EndCriterion        &end,
+                            const double               time,
+                            const double               eps,
+                            RunSummary                &summary)
+    {
+      if (end.capacity_drop <= 0)
+        return false;
+      const auto &conditions = constraints.get_conditions();
+      for (unsigned int b = 0; b < conditions.size() && b < constraints.peak_reactions().size(); ++b)
+        if (conditions[b].name == constraints.capacity_support())
+          {
+            const double *r    = &constraints.reactions()[3 * b];
+            const double  now  = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+            const double  peak = constraints.peak_reactions()[b];
+            if (!(peak > 0 && now <= (1. - end.capacity_drop) * peak))
+              summary.capacity_below_since = -1;
+            else if (summary.capacity_below_since < 0)
+              summary.capacity_below_since = time;
+            if (summary.capacity_below_since >= 0 && time - summary.capacity_below_since >= end.quiet_time - eps)
+              {
+                summary.capacity_end_reaction = now;
+                return true;
+              }
+          }
+      return false;
+    }
+  } // namespace
+
   void Simulator::zero_forces()
   {
     std::fill(force.begin(),
@@ -626,33 +665,8 @@ namespace anvil
           {
             write_history(time, last ? 0. : current_dt);
             next_history += parameters.history_interval;
-            // A push past its capacity: the row's reaction of the capacity
-            // support (summed over the processes, the same on each) below
-            // its bound for 'End quiet time' (not the dips of the wave that
-            // the push's start sends through the member, rho c v A, which
-            // can fall below half their first peak for a fraction of a ms).
-            if (const double drop = parameters.end_criterion.capacity_drop; drop > 0 && !last)
-              {
-                const auto &conditions = constraints->get_conditions();
-                for (unsigned int b = 0; b < conditions.size(); ++b)
-                  if (conditions[b].name == constraints->capacity_support() &&
-                      b < constraints->peak_reactions().size())
-                    {
-                      const double *r    = &constraints->reactions()[3 * b];
-                      const double  now  = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-                      const double  peak = constraints->peak_reactions()[b];
-                      if (!(peak > 0 && now <= (1. - drop) * peak))
-                        summary.capacity_below_since = -1;
-                      else if (summary.capacity_below_since < 0)
-                        summary.capacity_below_since = time;
-                      if (summary.capacity_below_since >= 0 &&
-                          time - summary.capacity_below_since >= parameters.end_criterion.quiet_time - eps)
-                        {
-                          quiet_end                     = true;
-                          summary.capacity_end_reaction = now;
-                        }
-                    }
-              }
+            if (!last && capacity_past_peak(*constraints, parameters.end_criterion, time, eps, summary))
+              quiet_end = true;
           }
         report_progress(clock, last);
         if (last)
