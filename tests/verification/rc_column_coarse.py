@@ -113,12 +113,18 @@ c.check_true("np = 2 writes the probe, contact and hammer histories of np = 1 (b
 # A partition boundary through the contact zone (np = 3): the contact is
 # evaluated per rank, the springs next to the boundary exchanged.
 short = {"Simulation/End time": 0.004, "Simulation/Output interval": 0}
-early = {np: run(f"bond_slip_4ms_np{np}", "rc_column_impact_coarse.prm", np=np, overrides=short) for np in (1, 3)}
-crossings = summary(early[3]).get("contact_springs_across_partitions", 0)
+early = run("bond_slip_4ms_np3", "rc_column_impact_coarse.prm", np=3, overrides=short)
+crossings = summary(early).get("contact_springs_across_partitions", 0)
 c.check_true(f"np = 3: springs of one rank act on another's nodes ({crossings:.0f} in 4 ms)", crossings > 0)
-identical = all(open(os.path.join(early[1], f)).read() == open(os.path.join(early[3], f)).read()
-                for f in ("probe_impact_point.csv", "contact_impact.csv", "rigid_hammer.csv"))
-c.check_true("np = 3 writes the probe, contact and hammer histories of np = 1 over 4 ms (bitwise)", identical)
+# Against the whole np = 1 run's rows of the first 4 ms (all but the last
+# row, the step that ends the short run at 4 ms exactly).
+compared, identical = 0, True
+for f in ("probe_impact_point.csv", "contact_impact.csv", "rigid_hammer.csv"):
+    rows = open(os.path.join(early, f)).read().splitlines()[:-1]
+    identical = identical and rows == open(os.path.join(bond, f)).read().splitlines()[:len(rows)]
+    compared += len(rows) - 1
+c.check_true("np = 3 writes the probe, contact and hammer histories of np = 1 over 4 ms (bitwise)",
+             identical and compared > 100, f"{compared} rows compared")
 e1, e2 = read_csv(os.path.join(bond, "energy.csv")), read_csv(os.path.join(bond_np2, "energy.csv"))
 diff = max(abs(x - y) for k in e1 for x, y in zip(e1[k], e2[k]))
 c.check_below("np = 2 energies against np = 1 (largest difference / E_0; sums in another order)",
