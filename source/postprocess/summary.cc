@@ -69,7 +69,7 @@ namespace anvil::Postprocess
       {
         out << std::setprecision(10) << "quantity,value\n";
         out << "end_time_s," << get_time() << '\n';
-        out << "ended_by_criterion," << (summary.ended_early || summary.capacity_end_reaction > 0 ? 1 : 0) << '\n';
+        out << "ended_by_criterion," << (summary.ended_early || summary.capacity_end_reaction >= 0 ? 1 : 0) << '\n';
         // The summary probe's and pair's figures first, then every probe's
         // and pair's by name (a run without a history row yet: zeros).
         const auto &subjects = get_summary_subjects();

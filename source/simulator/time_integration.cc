@@ -1015,7 +1015,7 @@ namespace anvil
           pcout << end.kinetic_internal_ratio << " E_int";
         pcout << " for " << end.quiet_time << " s): the run ends before its end time" << std::endl;
       }
-    if (summary.capacity_end_reaction > 0)
+    if (summary.capacity_end_reaction >= 0)
       pcout << "  the push is past its capacity (the reaction of '" << constraints->capacity_support() << "' fell to "
             << summary.capacity_end_reaction << " N, below " << 1. - parameters.end_criterion.capacity_drop
             << " of its peak for " << parameters.end_criterion.quiet_time

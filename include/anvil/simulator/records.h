@@ -127,9 +127,9 @@ namespace anvil
     bool   ended_early = false;
     /** Since when the capacity support's reaction has been below the
         'End capacity drop' bound (-1: it is not), and the reaction at the
-        row that ended the push (0: the push did not end so). */
+        row that ended the push (-1: the push did not end so). */
     double capacity_below_since  = -1;
-    double capacity_end_reaction = 0;
+    double capacity_end_reaction = -1;
     /** Every probe's peak and last displacement magnitude and its sum over
         the quiet period's rows, in the order of 'Probes' (summary.csv's
         peak_displacement_NAME_m, residual_displacement_NAME_m). */
