@@ -14,12 +14,13 @@
  *
  * Usage: element_throughput [n] [cycles] [one-point | materials | CASE]
  * (one-point: the one-point elastic step and the reference loop alone,
- * three times in turn, for A/B comparisons of builds; materials: the
+ * three times in turn, then the same with the bulk viscosity every scene
+ * has by default, for A/B comparisons of builds; materials: the
  * elastic step and each material's ratio to it, five times in turn, and
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
  * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding,
- * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0)
- * alone, for profiling)
+ * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0), elastic-bulk
+ * (with bulk viscosity) alone, for profiling)
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
@@ -59,7 +60,8 @@ namespace
              const bool                     reference   = false,
              const double                   steel_yield = 1e5,
              const bool                     johnson_cook = false,
-             const bool                     total_rate   = false)
+             const bool                     total_rate   = false,
+             const bool                     bulk_viscosity = false)
   {
     // Elastic, or the seed's Table 1 steel with a yield stress low enough
     // that the block flows plastically from the first cycles.
@@ -98,6 +100,8 @@ namespace
       steel    ? static_cast<const MaterialModel::Interface &>(plastic) :
                  static_cast<const MaterialModel::Interface &>(elastic);
     Element::ElementGroup group(material, formulation, integration, hourglass, 0.1);
+    if (bulk_viscosity)
+      group.set_bulk_viscosity(0.06, 1.2); // every scene's default (ABAQUS/Explicit's)
     const unsigned int    nn = n + 1;
     const double          h  = 1e-2;
     std::vector<double>   x(3 * nn * nn * nn), v(x.size()), f(x.size()), m(x.size(), 0.);
@@ -171,9 +175,14 @@ int main(int argc, char **argv)
   std::printf("element_throughput: %u elements (%u^3), %u cycles, one core\n", n * n * n, n, cycles);
   run(n, cycles / 4 + 1, Element::Integration::one_point); // warm up the machine
   // The one-point elastic step through the element-by-element reference loop.
-  const auto reference = [&]() {
+  const auto reference = [&](const bool bulk = false) {
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-               Formulation::updated_lagrangian, false, false, false, 1., true);
+               Formulation::updated_lagrangian, false, false, false, 1., true, 1e5, false, false, bulk);
+  };
+  // The same step with the bulk viscosity every scene has by default.
+  const auto with_bulk = [&]() {
+    return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
+               Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, false, false, true);
   };
   if (argc > 3 && std::string(argv[3]) == "one-point")
     {
@@ -184,6 +193,14 @@ int main(int argc, char **argv)
           const double b = run(n, cycles, Element::Integration::one_point).ns_per_element_cycle;
           const double r = reference().ns_per_element_cycle;
           std::printf("one-point: %.1f ns per element-cycle; reference loop: %.1f ns; one-point / reference: %.3f\n",
+                      b, r, b / r);
+        }
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const double b = with_bulk().ns_per_element_cycle;
+          const double r = reference(true).ns_per_element_cycle;
+          std::printf("with bulk viscosity: one-point %.1f ns per element-cycle; reference loop: %.1f ns; "
+                      "one-point / reference: %.3f\n",
                       b, r, b / r);
         }
       return 0;
@@ -237,13 +254,14 @@ int main(int argc, char **argv)
                                name == "jc-yielding"       ? jc_yielding() :
                                name == "jc-yielding-total" ? jc_yielding_total() :
                                name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
+                               name == "elastic-bulk" ? with_bulk() :
                                                    Result{-1., 0.};
       if (r.ns_per_element_cycle < 0)
         {
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
                        "elastic, steel-elastic, steel-yielding, concrete-elastic, "
-                       "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total)\n",
+                       "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total, elastic-bulk)\n",
                        name.c_str());
           return 1;
         }

@@ -1529,9 +1529,10 @@ namespace anvil::Element
     const double           b1 = bulk_linear, b2 = bulk_quadratic,
                            expansion_factor2 = bulk_dt_factor2_expansion;
     const bool             can_erode = !alive.empty();
-    // The constants of the stable steps: 4 rho_0 / M of the element's
-    // (times V_0 / V), 1 / (64 Q^2 M) of the viscous hourglass damper's.
-    const double step2_factor           = 4. * rho0 / M;
+    const bool             with_bulk_viscosity = bulk_viscosity();
+    // The constants of the stable steps: 4 / M of the element's (times
+    // Z below), 1 / (64 Q^2 M) of the viscous hourglass damper's.
+    const double four_over_M            = 4. / M;
     const double hourglass_step2_factor = 1. / (64. * hourglass_coefficient * hourglass_coefficient * M);
     // (With time_elements(): each batch's time, clock to clock.)
     const bool timed = timing_chunk > 0;
@@ -1700,7 +1701,7 @@ namespace anvil::Element
           {
             V0[l]    = reference_volume[el[l]];
             shape[l] = shape_factor[el[l]];
-            q_old[l] = bulk_viscosity() ? bulk_pressure[el[l]] : 0.;
+            q_old[l] = with_bulk_viscosity ? bulk_pressure[el[l]] : 0.;
           }
         alignas(64) double q_modes[3][4][W], stiffness[W];
         // The batch's hourglass state (hourglass_entry()): a lane that
@@ -1735,19 +1736,31 @@ namespace anvil::Element
                                         Ji[c][2][l] * Ji[c][2][l]);
           }
 
+        // Z = rho L^2 / 4 = m / (V |grad xi|^2), with L = 2 / |grad xi|
+        // the characteristic length and m = rho_0 V_0 the element's mass:
+        // the one quotient of both stable steps and the bulk viscosity.
+        alignas(64) double Z[W];
+        for (unsigned int l = 0; l < W; ++l)
+          Z[l] = rho0 * V0[l] / (8. * detn[l] * g2[l]);
+
         // Bulk viscosity: the pressure q joins the normal stresses of the
         // forces (not the stored stress); its trapezoidal work.
         alignas(64) double qv[W] = {}, e_visc[W] = {}, dt_bulk2[W], dt_hourglass2[W];
         std::fill(dt_hourglass2, dt_hourglass2 + W, 1e300);
         std::fill(dt_bulk2, dt_bulk2 + W, 1.);
-        if (bulk_viscosity())
+        if (with_bulk_viscosity)
           for (unsigned int l = 0; l < W; ++l)
             {
-              const double rho_c = rho0 * V0[l] / (8. * detn[l]);
-              qv[l]              = bulk_viscosity_pressure(trD[l], 2. / std::sqrt(g2[l]), rho_c,
-                                                           std::sqrt(M / rho_c), b1, b2,
-                                                           expansion_factor2, dt_bulk2[l]);
-              e_visc[l] = 0.5 * (q_old[l] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
+              // bulk_viscosity_pressure() with rho L^2 = 4 Z, rho L c =
+              // 2 S and L / c = 2 S / M, S = sqrt(M Z): one square root
+              // where there were three and three divisions.
+              const double S           = std::sqrt(M * Z[l]);
+              const double compression = trD[l] < 0 ? 1. : 0.;
+              const double xi          = b1 - 2. * b2 * b2 * (S / M) * trD[l];
+              const double sx          = std::sqrt(1. + xi * xi) - xi;
+              dt_bulk2[l] = compression * (sx * sx) + (1. - compression) * expansion_factor2;
+              qv[l]       = compression * (4. * b2 * b2 * Z[l] * trD[l] * trD[l] - 2. * b1 * S * trD[l]);
+              e_visc[l]   = 0.5 * (q_old[l] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
             }
         // Internal force f_Ia -= V sigma_ab dxi_c/dx_b dN_I/dxi_c, together
         // with the hourglass force below.
@@ -1871,11 +1884,11 @@ namespace anvil::Element
               if (live[l])
                 shape_factor[el[l]] = shape[l];
             }
-        // (4 / |grad xi|^2) shape (rho / M) with rho = m / V, one division.
+        // (4 / |grad xi|^2) shape (rho / M) = (4 / M) Z shape.
         alignas(64) double dt2[W];
         for (unsigned int l = 0; l < W; ++l)
           {
-            dt2[l] = step2_factor * shape[l] * V0[l] * dt_bulk2[l] / (g2[l] * (8. * detn[l]));
+            dt2[l] = four_over_M * Z[l] * shape[l] * dt_bulk2[l];
             dt2[l] = std::min(dt2[l], dt_hourglass2[l]);
           }
 
@@ -1891,7 +1904,7 @@ namespace anvil::Element
             result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
             internal_energy[e] += e_int[l];
             result.internal_energy_increment += energy_weight[e] * e_int[l];
-            if (bulk_viscosity())
+            if (with_bulk_viscosity)
               bulk_pressure[e] = qv[l];
             if (failed[l])
               {
@@ -1901,7 +1914,7 @@ namespace anvil::Element
                 erode(e, 1, result);
                 continue;
               }
-            if (bulk_viscosity())
+            if (with_bulk_viscosity)
               result.viscous_energy_increment += energy_weight[e] * e_visc[l];
             min_dt2 = std::min(min_dt2, dt2[l]);
             for (unsigned int n = 0; n < 8; ++n)

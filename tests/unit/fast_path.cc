@@ -4,8 +4,9 @@
  *
  * 13 distorted elements (one full batch of 8 and a padded one of 5) in a
  * non-uniform velocity field, 50 steps with rotation and stretch, for each
- * hourglass control: stresses, nodal forces, energies and the stable time
- * step must agree to round-off (1e-12 relative). The same for full
+ * hourglass control, and with bulk viscosity: stresses, nodal forces,
+ * energies and the stable time step must agree to round-off (1e-12
+ * relative). The same for full
  * integration, whose eight points the loop updates as one batch, against
  * the point-by-point update. Twice: elastic, and
  * plastic-kinematic steel that yields within the 50 steps (mixed hardening,
@@ -77,27 +78,36 @@ int main()
                                             static_cast<const MaterialModel::Interface *>(&concrete),
                                             static_cast<const MaterialModel::Interface *>(&jc),
                                             static_cast<const MaterialModel::Interface *>(&jc_total)})
-  for (const int config : {0, 1, 2, 3})
+  for (const int config : {0, 1, 2, 3, 4, 5})
     {
       // One point with each hourglass control; full integration (its
-      // eight points as one batch against point by point).
-      const auto type = std::array<Element::HourglassType, 4>{
-        {Element::HourglassType::none, Element::HourglassType::viscous,
-         Element::HourglassType::stiffness, Element::HourglassType::none}}[config];
-      const auto integration = (config == 3 ? Element::Integration::full : Element::Integration::one_point);
+      // eight points as one batch against point by point); the last two
+      // again with the bulk viscosity every scene has by default.
+      const auto type = std::array<Element::HourglassType, 6>{
+        {Element::HourglassType::none, Element::HourglassType::viscous, Element::HourglassType::stiffness,
+         Element::HourglassType::none, Element::HourglassType::viscous, Element::HourglassType::none}}[config];
+      const auto integration =
+        (config == 3 || config == 5 ? Element::Integration::full : Element::Integration::one_point);
+      const bool bulk = config >= 4;
       const auto &material = *m;
-      std::printf("== %s, %s\n",
+      std::printf("== %s, %s%s\n",
                   m == &elastic ? "elastic" : m == &plastic ? "plastic kinematic" :
                   m == &jc      ? "johnson cook" :
                   m == &jc_total ? "johnson cook, rate of the total strain" : "concrete damaged plasticity",
-                  config == 3 ? "full integration" :
-                                (Element::to_string(type) + " hourglass control").c_str());
+                  integration == Element::Integration::full ? "full integration" :
+                                (Element::to_string(type) + " hourglass control").c_str(),
+                  bulk ? ", bulk viscosity" : "");
       test::Block block(13, 1, 1);
       for (unsigned int n = 0; n < block.n_nodes(); ++n)
         for (unsigned int d = 0; d < 3; ++d)
           block.X[3 * n + d] += 0.02 * std::sin(1.7 * n + 2.3 * d);
       Element::ElementGroup fast(material, Formulation::updated_lagrangian, integration, type, 0.1);
       Element::ElementGroup ref(material, Formulation::updated_lagrangian, integration, type, 0.1);
+      if (bulk)
+        {
+          fast.set_bulk_viscosity(0.06, 1.2);
+          ref.set_bulk_viscosity(0.06, 1.2);
+        }
       block.make_elements(fast);
       block.make_elements(ref);
       std::vector<double> x(block.X), v(x.size());
@@ -106,7 +116,7 @@ int main()
           v[3 * n + d] = 3. * std::cos(0.9 * n + 1.1 * d) + (d == 1 ? 2. * x[3 * n] : 0.);
       double worst_f = 0, worst_s = 0, worst_e = 0, worst_dt = 0;
       const double dt = 1e-6;
-      double e_fast = 0, e_ref = 0, h_fast = 0, h_ref = 0;
+      double e_fast = 0, e_ref = 0, h_fast = 0, h_ref = 0, q_fast = 0, q_ref = 0;
       unsigned int damaged_elastic = 0, damaged_elastic_mixed = 0;
       for (unsigned int step = 0; step < 50; ++step)
         {
@@ -158,6 +168,8 @@ int main()
           e_ref += r2.internal_energy_increment;
           h_fast += r1.hourglass_energy_increment;
           h_ref += r2.hourglass_energy_increment;
+          q_fast += r1.viscous_energy_increment;
+          q_ref += r2.viscous_energy_increment;
           for (unsigned int i = 0; i < x.size(); ++i)
             x[i] += dt * v[i];
         }
@@ -246,6 +258,11 @@ int main()
       check_below("largest stress difference / element's largest stress", worst_s, tol);
       check_below("internal and hourglass energy, relative difference", worst_e, 1e-12);
       check_below("stable time step, relative difference", worst_dt, 1e-14);
+      if (bulk)
+        {
+          check_below("the bulk viscosity acts: -(its work / internal energy)", -q_ref / std::abs(e_ref), -1e-6);
+          check_below("bulk viscosity's work, relative difference", std::abs(q_fast - q_ref) / q_ref, 1e-12);
+        }
       // An inverted Jacobian hands the batch to the reference loop, which
       // would hide a wrong fast path: on this block it must never happen.
       check_below("batches handed to the reference loop", double(fast.n_reference_fallbacks()), 0.5);
