@@ -20,7 +20,8 @@
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
  * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding,
  * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0), elastic-bulk
- * (with bulk viscosity) alone, for profiling)
+ * (with bulk viscosity), full, full-bulk (full integration, elastic)
+ * alone, for profiling)
  */
 #include <anvil/element/element_group.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
@@ -255,13 +256,18 @@ int main(int argc, char **argv)
                                name == "jc-yielding-total" ? jc_yielding_total() :
                                name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
                                name == "elastic-bulk" ? with_bulk() :
+                               name == "full" ? run(n, cycles, Element::Integration::full) :
+                               name == "full-bulk" ?
+                                                   run(n, cycles, Element::Integration::full,
+                                                       Element::HourglassType::viscous, Formulation::updated_lagrangian,
+                                                       false, false, false, 1., false, 1e5, false, false, true) :
                                                    Result{-1., 0.};
       if (r.ns_per_element_cycle < 0)
         {
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
                        "elastic, steel-elastic, steel-yielding, concrete-elastic, "
-                       "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total, elastic-bulk)\n",
+                       "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total, elastic-bulk, full, full-bulk)\n",
                        name.c_str());
           return 1;
         }

@@ -1249,7 +1249,9 @@ namespace anvil::Element
   // file is compiled without contraction to FMA); the material update is
   // the batched one, where the reference updates point by point.
   // tests/unit/fast_path compares the two: the same bits for an elastic
-  // material, 4e-12 of the history for cracking concrete. An element with
+  // material without bulk viscosity (with it, round-off: its terms are
+  // arranged to need one division a point, as in batched_loop()), 4e-12
+  // of the history for cracking concrete. An element with
   // a point not positive (now or at mid-step) goes to loop(), which
   // reports it.
   LoopResult ElementGroup::full_batched_loop(const double *x,
@@ -1264,6 +1266,9 @@ namespace anvil::Element
     LoopResult             result;
     double                 min_dt2   = 1e300;
     const bool             can_erode = !alive.empty();
+    const bool             with_bulk_viscosity = bulk_viscosity();
+    const double           b1 = bulk_linear, b2 = bulk_quadratic,
+                           expansion_factor2 = bulk_dt_factor2_expansion;
     const unsigned int     n_el      = n_elements();
     const auto            &dNp       = point_tables.by_point;
     const auto            &dNn       = point_tables.by_node;
@@ -1373,20 +1378,35 @@ namespace anvil::Element
             e_int += p_int[l];
             volume += detn[l] * tables.weight[l];
             max_grad2 = std::max(max_grad2, grad2[l]);
-            if (bulk_viscosity())
+          }
+        if (with_bulk_viscosity)
+          {
+            // bulk_viscosity_pressure() at each point across the lanes,
+            // with rho L^2 = 4 Z, rho L c = 2 S and L / c = 2 S / M (Z =
+            // rho / |grad xi|^2 at the point's density rho_0 V_0 / (8
+            // det J), S = sqrt(M Z); batched_loop()): one division and
+            // two square roots a point; then the work in point order.
+            alignas(64) double qp[W], f2[W], trD[W];
+            const double       m8 = rho0 * reference_volume[e] / 8.;
+            for (unsigned int l = 0; l < W; ++l)
               {
-                const double trD   = D[0][l] + D[1][l] + D[2][l];
-                const double jxw   = detn[l] * tables.weight[l];
-                const double rho_q = rho0 * reference_volume[e] / (8. * detn[l]);
-                double       f2;
-                const double q =
-                  bulk_viscosity_pressure(trD, 2. / std::sqrt(grad2[l]), rho_q, std::sqrt(M / rho_q), f2);
-                dt_bulk2      = std::min(dt_bulk2, f2);
+                trD[l]                   = D[0][l] + D[1][l] + D[2][l];
+                const double Z           = m8 / (detn[l] * grad2[l]);
+                const double S           = std::sqrt(M * Z);
+                const double compression = trD[l] < 0 ? 1. : 0.;
+                const double xi          = b1 - 2. * b2 * b2 * (S / M) * trD[l];
+                const double sx          = std::sqrt(1. + xi * xi) - xi;
+                f2[l] = compression * (sx * sx) + (1. - compression) * expansion_factor2;
+                qp[l] = compression * (4. * b2 * b2 * Z * trD[l] * trD[l] - 2. * b1 * S * trD[l]);
+              }
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                dt_bulk2      = std::min(dt_bulk2, f2[l]);
                 double &q_old = bulk_pressure[e * nq + l];
-                e_visc += 0.5 * (q_old + q) * (-trD) * dt * jxw;
-                q_old = q;
+                e_visc += 0.5 * (q_old + qp[l]) * (-trD[l]) * dt * (detn[l] * tables.weight[l]);
+                q_old = qp[l];
                 for (unsigned int k = 0; k < 3; ++k)
-                  sf[k][l] -= q;
+                  sf[k][l] -= qp[l];
               }
           }
         alignas(64) double G[3][3][W];
