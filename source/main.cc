@@ -145,6 +145,12 @@ namespace
     // follow from replicated input or global reductions), so every rank can
     // return; anything else aborts the whole job rather than leaving ranks
     // waiting in a collective.
+    // (Rank 0's one error line, and the exit status.)
+    const auto error = [root](const std::string &message, const int status) {
+      if (root)
+        std::cerr << "anvil: error: " << anvil::printable_excerpt(message) << std::endl;
+      return status;
+    };
     try
       {
         if (translate)
@@ -182,15 +188,11 @@ namespace
       }
     catch (const anvil::InputError &e)
       {
-        if (root)
-          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-        return 2;
+        return error(e.what(), 2);
       }
     catch (const anvil::NumericalFailure &e)
       {
-        if (root)
-          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-        return 3;
+        return error(e.what(), 3);
       }
     catch (const anvil::Interrupted &e)
       {
@@ -203,9 +205,7 @@ namespace
         // Histories are rank 0's: the other ranks learn of the failure in a
         // collective and return with it; a frame or summary that failed on
         // one rank alone takes the job down.
-        if (root)
-          std::cerr << "anvil: error: " << anvil::printable_excerpt(e.what()) << std::endl;
-        return 4;
+        return error(e.what(), 4);
       }
     catch (const dealii::ExceptionBase &e)
       {

@@ -1381,23 +1381,16 @@ namespace anvil::Element
           }
         if (with_bulk_viscosity)
           {
-            // bulk_viscosity_pressure() at each point across the lanes,
-            // with rho L^2 = 4 Z, rho L c = 2 S and L / c = 2 S / M (Z =
-            // rho / |grad xi|^2 at the point's density rho_0 V_0 / (8
-            // det J), S = sqrt(M Z); batched_loop()): one division and
-            // two square roots a point; then the work in point order.
+            // The pressure at each point across the lanes, from Z at the
+            // point's density rho_0 V_0 / (8 det J) (one division a
+            // point); then the work in point order.
             alignas(64) double qp[W], f2[W], trD[W];
             const double       m8 = rho0 * reference_volume[e] / 8.;
             for (unsigned int l = 0; l < W; ++l)
               {
-                trD[l]                   = D[0][l] + D[1][l] + D[2][l];
-                const double Z           = m8 / (detn[l] * grad2[l]);
-                const double S           = std::sqrt(M * Z);
-                const double compression = trD[l] < 0 ? 1. : 0.;
-                const double xi          = b1 - 2. * b2 * b2 * (S / M) * trD[l];
-                const double sx          = std::sqrt(1. + xi * xi) - xi;
-                f2[l] = compression * (sx * sx) + (1. - compression) * expansion_factor2;
-                qp[l] = compression * (4. * b2 * b2 * Z * trD[l] * trD[l] - 2. * b1 * S * trD[l]);
+                trD[l]         = D[0][l] + D[1][l] + D[2][l];
+                const double Z = m8 / (detn[l] * grad2[l]);
+                qp[l]          = bulk_viscosity_pressure_of_Z(trD[l], Z, M, b1, b2, expansion_factor2, f2[l]);
               }
             for (unsigned int l = 0; l < W; ++l)
               {
@@ -1771,16 +1764,10 @@ namespace anvil::Element
         if (with_bulk_viscosity)
           for (unsigned int l = 0; l < W; ++l)
             {
-              // bulk_viscosity_pressure() with rho L^2 = 4 Z, rho L c =
-              // 2 S and L / c = 2 S / M, S = sqrt(M Z): one square root
-              // where there were three and three divisions.
-              const double S           = std::sqrt(M * Z[l]);
-              const double compression = trD[l] < 0 ? 1. : 0.;
-              const double xi          = b1 - 2. * b2 * b2 * (S / M) * trD[l];
-              const double sx          = std::sqrt(1. + xi * xi) - xi;
-              dt_bulk2[l] = compression * (sx * sx) + (1. - compression) * expansion_factor2;
-              qv[l]       = compression * (4. * b2 * b2 * Z[l] * trD[l] * trD[l] - 2. * b1 * S * trD[l]);
-              e_visc[l]   = 0.5 * (q_old[l] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
+              // (One square root where there were three and three
+              // divisions.)
+              qv[l]     = bulk_viscosity_pressure_of_Z(trD[l], Z[l], M, b1, b2, expansion_factor2, dt_bulk2[l]);
+              e_visc[l] = 0.5 * (q_old[l] + qv[l]) * (-trD[l]) * dt * 8. * detn[l];
             }
         // Internal force f_Ia -= V sigma_ab dxi_c/dx_b dN_I/dxi_c, together
         // with the hourglass force below.

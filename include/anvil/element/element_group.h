@@ -464,6 +464,21 @@ namespace anvil::Element
       dt_factor2 = compression * (s * s) + (1. - compression) * expansion_factor2;
       return compression * (rho * L * (b2 * b2 * L * trD * trD - b1 * c * trD));
     }
+    /** The same for the batched loops, from Z = rho / |grad xi|^2 (= m /
+        (V |grad xi|^2), m the element's or point's mass): with rho L^2 =
+        4 Z, rho L c = 2 S and L / c = 2 S / M, S = sqrt(M Z), one square
+        root of Z and no division; branch-free. */
+    static double bulk_viscosity_pressure_of_Z(const double trD, const double Z, const double M,
+                                               const double b1, const double b2,
+                                               const double expansion_factor2, double &dt_factor2)
+    {
+      const double S           = std::sqrt(M * Z);
+      const double compression = trD < 0 ? 1. : 0.;
+      const double xi          = b1 - 2. * b2 * b2 * (S / M) * trD;
+      const double sx          = std::sqrt(1. + xi * xi) - xi;
+      dt_factor2 = compression * (sx * sx) + (1. - compression) * expansion_factor2;
+      return compression * (4. * b2 * b2 * Z * trD * trD - 2. * b1 * S * trD);
+    }
     const unsigned int              n_qp;
     double                          adapted_energy = 0;
     const unsigned int              n_hist;
