@@ -603,6 +603,23 @@ namespace anvil
                           "A node set of one node in the mesh file of 'Body' "
                           "(ABAQUS *Nset, 'INSTANCE.SET'); its node replaces "
                           "'Point'.");
+        prm.declare_entry("Average",
+                          "node",
+                          Patterns::Selection("node|section"),
+                          "'node': the motion of the probed node. 'section': "
+                          "the motion of the centre of mass of the body's "
+                          "cross-section through that node, normal to 'Section "
+                          "normal' (the lumped-mass weighted mean over the "
+                          "section's nodes; ABAQUS: a reference node with a "
+                          "distributing coupling to the section): a member's "
+                          "deflection, which a node of crushed or spalled cover "
+                          "does not follow. The stress is the probed node's "
+                          "element's either way.");
+        prm.declare_entry("Section normal",
+                          "z",
+                          Patterns::Selection("x|y|z"),
+                          "The axis normal to the section of 'Average = "
+                          "section' (a member's axis).");
         prm.leave_subsection();
       }
     for (const auto &s : stage_names)
@@ -1029,6 +1046,8 @@ namespace anvil
               probes[i].point[d] = dealii::Utilities::string_to_double(p[d]);
             probes[i].body     = prm.get("Body");
             probes[i].node_set = MeshFile::key(prm.get("Node set"));
+            if (prm.get("Average") == "section")
+              probes[i].section_normal = prm.get("Section normal")[0] - 'x';
             prm.leave_subsection();
             if (!probes[i].node_set.empty() && probes[i].body.empty())
               throw InputError("subsection 'Probe " + probe_names[i] +

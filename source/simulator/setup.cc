@@ -546,17 +546,19 @@ namespace anvil
   void Simulator::setup_probes()
   {
     const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const IndexSet    &owned = dof_handler.locally_owned_dofs();
     for (auto &probe : probes)
       {
-        double best = 1e300;
-        double dof  = 0;
+        // The nearest node, its coordinate along a section's normal and
+        // the shortest edge of the cell it was found in.
+        double best = 1e300, dof = 0, along = 0, edge = 0;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned() &&
               (probe.body.empty() || bodies[cell->material_id()].name == probe.body))
             for (unsigned int v = 0; v < 8; ++v)
               {
                 const auto d = cell->vertex_dof_index(v, 0);
-                if (!dof_handler.locally_owned_dofs().is_element(d))
+                if (!owned.is_element(d))
                   continue;
                 // (A hanging node's motion is its neighbours': the probe
                 // follows the nearest node that is not hanging.)
@@ -567,13 +569,15 @@ namespace anvil
                 const double dist = cell->vertex(v).distance(probe.point);
                 if (dist < best - 1e-12 * (1 + best))
                   {
-                    best = dist;
-                    dof  = d;
+                    best  = dist;
+                    dof   = d;
+                    along = probe.section_normal >= 0 ? cell->vertex(v)[probe.section_normal] : 0.;
+                    edge  = cell->minimum_vertex_distance();
                   }
               }
         const auto all = Utilities::MPI::all_gather(mpi_communicator,
-                                                    std::array<double, 3>{{best, dof, double(rank)}});
-        std::array<double, 3> chosen = all[0];
+                                                    std::array<double, 5>{{best, dof, double(rank), along, edge}});
+        std::array<double, 5> chosen = all[0];
         for (const auto &a : all)
           if (a[0] < chosen[0] - 1e-12 * (1 + chosen[0]))
             chosen = a;
@@ -593,6 +597,42 @@ namespace anvil
                       probe.element = e;
                     }
           }
+        if (probe.section_normal >= 0)
+          setup_section_probe(probe, chosen[3], 1e-3 * chosen[4]);
+      }
+  }
+
+
+  // A section probe's nodes: those of the body (not hanging) within a
+  // thousandth of the chosen node's shortest edge of its plane, ordered
+  // by scene index, so that every partition sums them in one order.
+  void Simulator::setup_section_probe(Probe &probe, const double along, const double tolerance)
+  {
+    const IndexSet          &owned = dof_handler.locally_owned_dofs();
+    std::set<types::global_dof_index> seen;
+    std::vector<std::array<double, 4>> mine; // scene key, rank, dof, mass
+    const double                      rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && (probe.body.empty() || bodies[cell->material_id()].name == probe.body))
+        for (unsigned int v = 0; v < 8; ++v)
+          {
+            const auto d = cell->vertex_dof_index(v, 0);
+            if (!owned.is_element(d) || std::abs(cell->vertex(v)[probe.section_normal] - along) > tolerance ||
+                hanging.is_hanging(position.get_partitioner()->global_to_local(d)) || !seen.insert(d).second)
+              continue;
+            mine.push_back({{double(dof_key[owned.index_within_set(d)]), rank, double(d), mass(d)}});
+          }
+    std::vector<std::array<double, 4>> section;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, mine))
+      section.insert(section.end(), part.begin(), part.end());
+    std::sort(section.begin(), section.end());
+    probe.section_mass.clear();
+    probe.owned_section_dofs.clear();
+    for (unsigned int i = 0; i < section.size(); ++i)
+      {
+        probe.section_mass.push_back(section[i][3]);
+        if (section[i][1] == rank)
+          probe.owned_section_dofs.emplace_back(i, static_cast<unsigned long>(section[i][2]));
       }
   }
 

@@ -53,7 +53,8 @@ namespace anvil
     }
   };
 
-  /** A named output point: the node of a body nearest to a given point. */
+  /** A named output point: the node of a body nearest to a given point,
+      or the centre of mass of the body's cross-section through it. */
   struct Probe
   {
     std::string      name;
@@ -62,9 +63,17 @@ namespace anvil
     /** A one-node set of the body's mesh file that gives 'point' (upper
         case), or empty. */
     std::string      node_set;
+    /** 'Average = section': the normal of the section (0, 1, 2), or -1
+        for the node alone. */
+    int section_normal = -1;
     /** Global x-dof index of the chosen node, and its owner. */
     unsigned long x_dof = 0;
     int           owner = 0;
+    /** A section probe: the section's nodes in the order of their scene
+        index (the same on every partition), their lumped masses, and the
+        slot of each of this process's owned ones in that order. */
+    std::vector<double>                                 section_mass;
+    std::vector<std::pair<unsigned int, unsigned long>> owned_section_dofs;
     /** On the owner: the element group and element whose stress the probe
         reports (of the elements around the node, the one with the smallest
         scene-wide id, so that every partition reports the same). */

@@ -193,6 +193,7 @@ namespace anvil
     void setup_system();
     void assemble_lumped_mass();
     void setup_probes();
+    void setup_section_probe(Probe &probe, double along, double tolerance);
     /** At the start of a run and in --check: the elements with the
         smallest stable steps and a warning for distorted ones (scaled
         Jacobian below 0.3), source/simulator/mesh_quality.cc. */
