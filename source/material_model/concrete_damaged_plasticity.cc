@@ -1422,6 +1422,17 @@ namespace anvil::MaterialModel
                      dissipation);
       }
 
+    // The rate's factors of a batch with a point outside its static
+    // surfaces, across the lanes (ConcreteDIF::factors()).
+    alignas(64) double tdif_lanes[W], cdif_lanes[W];
+    if (par.rate_effects)
+      {
+        bool any_outside_static = false;
+        for (unsigned int l = 0; l < W; ++l)
+          any_outside_static = any_outside_static || elastic[l] == 0.;
+        if (any_outside_static)
+          ConcreteDIF::factors(rate, W, par.cube_strength, par.dif_strength, tdif_lanes, cdif_lanes);
+      }
     for (unsigned int l = 0; l < W; ++l)
       {
         double *cl = cold[l];
@@ -1436,8 +1447,8 @@ namespace anvil::MaterialModel
             // factors from here.)
             if (elastic[l] == 0.)
               {
-                tdif[l]    = ConcreteDIF::tensile(rate[l], par.dif_strength);
-                cdif[l]    = ConcreteDIF::compressive(rate[l], par.cube_strength);
+                tdif[l]    = tdif_lanes[l];
+                cdif[l]    = cdif_lanes[l];
                 elastic[l] = inside_surfaces(von_mises[l], mean_stress[l], trial_s[0][l],
                                              tdif[l] * hv[2][l], cdif[l] * hv[3][l], margin[l]);
               }

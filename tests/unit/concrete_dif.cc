@@ -12,6 +12,9 @@
  */
 #include <anvil/material_model/concrete_dif.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "unit_test.h"
 
 using namespace anvil::MaterialModel;
@@ -54,6 +57,24 @@ int main()
       previous = v;
     }
   check("both factors never decrease with the rate (1 = yes)", increasing, 1., 0.);
+
+  std::printf("== across the lanes (ConcreteDIF::factors) against the functions above\n");
+  {
+    // Rates from 1e-8 to 1e5 1/s, and each branch's ends exactly.
+    std::vector<double> rates = {0., 1e-6, 30e-6, 1., 30., 1e-6 * (1 + 1e-15), 30. * (1 + 1e-15)};
+    for (double r = 1e-8; r < 1e5; r *= 1.013)
+      rates.push_back(r);
+    while (rates.size() % 64 != 0)
+      rates.push_back(rates.back() * 1.013);
+    std::vector<double> t(rates.size()), c(rates.size());
+    ConcreteDIF::factors(rates.data(), rates.size(), fcu, fc, t.data(), c.data());
+    double worst = 0;
+    for (std::size_t i = 0; i < rates.size(); ++i)
+      worst = std::max({worst, std::abs(t[i] / ConcreteDIF::tensile(rates[i], fc) - 1.),
+                        std::abs(c[i] / ConcreteDIF::compressive(rates[i], fcu) - 1.)});
+    std::printf("  %zu rates\n", rates.size());
+    check_below("largest relative difference", worst, 1e-14);
+  }
 
   std::printf("== the seed's printed constants, for the record\n");
   const double seed_lo = std::pow(30. / 30e-6, 1.206 * alpha);

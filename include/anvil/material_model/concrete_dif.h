@@ -53,4 +53,11 @@ namespace anvil::MaterialModel::ConcreteDIF
     const double log_beta = 6. * delta - 2.;
     return std::pow(10., log_beta) * std::cbrt(rate / static_rate);
   }
+
+  /** tensile() and compressive() of @p n rates at once, @p n a multiple of
+      Simd::register_lanes (anvil/utilities/simd_pack.h), into @p tdif and
+      @p cdif: across the lanes, one logarithm of the rate and two
+      exponentials a rate, where the two functions take a power each; they
+      agree with them to a few ulp (tests/unit/concrete_dif). */
+  void factors(const double *rate, unsigned int n, double f_cu, double f_c, double *tdif, double *cdif);
 } // namespace anvil::MaterialModel::ConcreteDIF
