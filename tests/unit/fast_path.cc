@@ -25,6 +25,7 @@
 #include <anvil/kinematics/tensor3.h>
 #include <anvil/material_model/concrete_damaged_plasticity.h>
 #include <anvil/material_model/johnson_cook.h>
+#include <anvil/material_model/piecewise_linear_plasticity.h>
 #include <anvil/material_model/plastic_kinematic.h>
 
 #include "unit_test.h"
@@ -72,12 +73,22 @@ int main()
   MaterialModel::JohnsonCook jc_total;
   jl.total_rate = true;
   jc_total.set(7850., 2e11, 0.3, jl, 293, false);
+  // A tabulated flow curve that hardens, then softens, with rate effects.
+  MaterialModel::PiecewiseLinearPlasticity tabulated;
+  MaterialModel::FlowCurve                 curve;
+  curve.strain       = {0., 1e-3, 1e-2};
+  curve.stress       = {1e7, 2e7, 1.5e7};
+  curve.C            = 40;
+  curve.p            = 5;
+  curve.rate_effects = true;
+  tabulated.set(7850., 2e11, 0.3, curve, 0.);
   using C = MaterialModel::ConcreteDamagedPlasticity;
   for (const MaterialModel::Interface *m : {static_cast<const MaterialModel::Interface *>(&elastic),
                                             static_cast<const MaterialModel::Interface *>(&plastic),
                                             static_cast<const MaterialModel::Interface *>(&concrete),
                                             static_cast<const MaterialModel::Interface *>(&jc),
-                                            static_cast<const MaterialModel::Interface *>(&jc_total)})
+                                            static_cast<const MaterialModel::Interface *>(&jc_total),
+                                            static_cast<const MaterialModel::Interface *>(&tabulated)})
   for (const int config : {0, 1, 2, 3, 4, 5})
     {
       // One point with each hourglass control; full integration (its
@@ -93,7 +104,8 @@ int main()
       std::printf("== %s, %s%s\n",
                   m == &elastic ? "elastic" : m == &plastic ? "plastic kinematic" :
                   m == &jc      ? "johnson cook" :
-                  m == &jc_total ? "johnson cook, rate of the total strain" : "concrete damaged plasticity",
+                  m == &jc_total ? "johnson cook, rate of the total strain" :
+                  m == &tabulated ? "piecewise linear plasticity" : "concrete damaged plasticity",
                   integration == Element::Integration::full ? "full integration" :
                                 (Element::to_string(type) + " hourglass control").c_str(),
                   bulk ? ", bulk viscosity" : "");
@@ -172,6 +184,20 @@ int main()
           q_ref += r2.viscous_energy_increment;
           for (unsigned int i = 0; i < x.size(); ++i)
             x[i] += dt * v[i];
+        }
+      if (m == &tabulated)
+        {
+          double eps_p = 0, worst_h = 0;
+          for (unsigned int e = 0; e < ref.n_elements(); ++e)
+            {
+              eps_p = std::max(eps_p, ref.history_variable(e, 0, 0));
+              for (unsigned int k = 0; k < 3; ++k)
+                worst_h = std::max(worst_h, std::abs(fast.history_variable(e, 0, k) - ref.history_variable(e, 0, k)) /
+                                              (std::abs(ref.history_variable(e, 0, k)) + 1e-30));
+            }
+          check_below("the tabulated run yields past the curve's peak (1e-3): -(largest effective plastic strain)",
+                      -eps_p, -1e-3);
+          check_below("history variables, largest relative difference", worst_h, 1e-10);
         }
       if (m == &plastic)
         {
