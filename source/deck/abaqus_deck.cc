@@ -788,10 +788,8 @@ namespace anvil::Deck
           }
         else if (hardening.empty() || hardening == "ISOTROPIC" || hardening == "KINEMATIC")
           {
-            // Bilinear: one row (perfectly plastic) or two.
-            if (plastic->data.empty() || plastic->data.size() > 2)
-              unsupported(*plastic, "Anvil's tabular plasticity is bilinear: one or two rows (yield stress, "
-                                    "plastic strain)");
+            // Rows 'yield stress, plastic strain' (a third field is a
+            // temperature: not supported), the first at plastic strain 0.
             std::vector<std::array<double, 2>> rows;
             for (const auto &line : plastic->data)
               {
@@ -802,25 +800,47 @@ namespace anvil::Deck
                 rows.push_back({{value(f[0], line, "the yield stress"),
                                  f.size() > 1 ? value(f[1], line, "the plastic strain") : 0.}});
               }
+            if (rows.empty())
+              unsupported(*plastic, "needs a row 'YIELD STRESS, PLASTIC STRAIN'");
             if (rows[0][1] != 0)
               throw InputError(plastic->data[0].where() + "the first row's plastic strain must be 0");
-            double Et = 0;
-            if (rows.size() == 2)
-              {
-                if (!(rows[1][1] > 0))
-                  throw InputError(plastic->data[1].where() + "the plastic strain must grow");
-                const double H = (rows[1][0] - rows[0][0]) / rows[1][1];
-                Et             = el[0] * H / (el[0] + H);
-                w.differ("*Plastic: the second row continues as a straight line (bilinear steel)");
-              }
-            w.set("Model", "plastic kinematic");
-            w.enter("plastic kinematic");
+            // Isotropic: the table as ABAQUS reads it, straight between
+            // the rows and constant beyond the last. Kinematic: bilinear,
+            // one row (perfectly plastic) or two.
+            const bool isotropic = hardening != "KINEMATIC";
+            if (!isotropic && rows.size() > 2)
+              unsupported(*plastic, "with hardening=KINEMATIC Anvil's plasticity is bilinear: one or two rows "
+                                    "(tables of more rows: isotropic hardening)");
+            const std::string model = isotropic ? "piecewise linear plasticity" : "plastic kinematic";
+            w.set("Model", model);
+            w.enter(model);
             w.set("Density", rho);
             w.set("Young's modulus", el[0]);
             w.set("Poisson's ratio", el[1]);
-            w.set("Yield stress", rows[0][0]);
-            w.set("Tangent modulus", Et);
-            w.set("Hardening parameter beta", hardening == "KINEMATIC" ? 0.0 : 1.0);
+            if (isotropic)
+              {
+                std::string table;
+                for (const auto &r : rows)
+                  table += (table.empty() ? "" : ", ") + w.number(r[1]) + ":" + w.number(r[0]);
+                w.set("Flow curve", table);
+                w.set("Beyond the curve", "constant");
+              }
+            else
+              {
+                double Et = 0;
+                if (rows.size() == 2)
+                  {
+                    if (!(rows[1][1] > 0))
+                      throw InputError(plastic->data[1].where() + "the plastic strain must grow");
+                    const double H = (rows[1][0] - rows[0][0]) / rows[1][1];
+                    Et             = el[0] * H / (el[0] + H);
+                    w.differ("*Plastic: the second row continues as a straight line (bilinear steel)");
+                  }
+                w.set("Yield stress", rows[0][0]);
+                w.set("Tangent modulus", Et);
+                w.set("Hardening parameter beta", 0.0);
+                w.set("Strain rate effects", rate ? "Cowper-Symonds" : "none");
+              }
             if (rate)
               {
                 if (MeshFile::key(rate->get("TYPE")) != "POWER LAW" && !rate->get("TYPE").empty())
@@ -828,10 +848,7 @@ namespace anvil::Deck
                 const auto r = numbers(*rate, 2, 2);
                 w.set("Cowper-Symonds C", r[0]);
                 w.set("Cowper-Symonds p", r[1]);
-                w.set("Strain rate effects", "Cowper-Symonds");
               }
-            else
-              w.set("Strain rate effects", "none");
             w.leave();
           }
         else

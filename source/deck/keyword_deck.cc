@@ -34,8 +34,8 @@ namespace anvil::Deck
   namespace
   {
     const char *supported =
-      "*NODE, *ELEMENT_SOLID, *PART, *SECTION_SOLID, *HOURGLASS, *MAT_ELASTIC/_PLASTIC_KINEMATIC/_JOHNSON_COOK/"
-      "_RIGID, *EOS_LINEAR_POLYNOMIAL, *SET_, *DEFINE_, *INITIAL_VELOCITY, *BOUNDARY_SPC/_PRESCRIBED_MOTION, "
+      "*NODE, *ELEMENT_SOLID, *PART, *SECTION_SOLID, *HOURGLASS, *MAT_ELASTIC/_PLASTIC_KINEMATIC/"
+      "_PIECEWISE_LINEAR_PLASTICITY/_JOHNSON_COOK/_RIGID, *EOS_LINEAR_POLYNOMIAL, *SET_, *DEFINE_, *INITIAL_VELOCITY, *BOUNDARY_SPC/_PRESCRIBED_MOTION, "
       "*RIGIDWALL_PLANAR, *CONTACT_, *LOAD_BODY_X/Y/Z, *CONTROL_, *DATABASE_; doc/decks.md lists them";
 
     // Keywords that request output or describe the run without changing
@@ -173,7 +173,8 @@ namespace anvil::Deck
         else if (n == "HOURGLASS")
           hourglasses[id_of(kw)] = &kw;
         else if (n == "MAT_ELASTIC" || n == "MAT_001" || n == "MAT_PLASTIC_KINEMATIC" || n == "MAT_003" ||
-                 n == "MAT_JOHNSON_COOK" || n == "MAT_015" || n == "MAT_RIGID" || n == "MAT_020")
+                 n == "MAT_JOHNSON_COOK" || n == "MAT_015" || n == "MAT_RIGID" || n == "MAT_020" ||
+                 n == "MAT_PIECEWISE_LINEAR_PLASTICITY" || n == "MAT_024")
           materials[id_of(kw)] = &kw;
         else if (n == "EOS_LINEAR_POLYNOMIAL" || n == "EOS_001")
           eoses[id_of(kw)] = &kw;
@@ -945,6 +946,82 @@ namespace anvil::Deck
                 w.set("Failure strain", fs);
                 w.set("Erosion", "true");
               }
+            w.leave();
+          }
+        else if (mk.name == "MAT_PIECEWISE_LINEAR_PLASTICITY" || mk.name == "MAT_024")
+          {
+            // MID RO E PR SIGY ETAN FAIL TDEL / C P LCSS LCSR VP /
+            // EPS1 ... EPS8 / ES1 ... ES8. The flow curve: LCSS's
+            // *DEFINE_CURVE, else the EPS-ES pairs, else SIGY and the
+            // hardening modulus E ETAN / (E - ETAN); beyond its end
+            // LS-DYNA continues the last slope.
+            const double E = real(a[2], c0, "E"), sigy = real(a[4], c0, "SIGY"), etan = real(a[5], c0, "ETAN");
+            std::vector<std::pair<double, double>> points;
+            const long lcss = integer(b[2], c1, "LCSS");
+            if (lcss != 0)
+              {
+                const auto cv = curves.find(lcss);
+                if (cv == curves.end())
+                  unsupported(mk, "LCSS " + std::to_string(lcss) + " is not a *DEFINE_CURVE (a *DEFINE_TABLE of "
+                                  "curves by strain rate is not supported)");
+                const Keyword &curve = *cv->second;
+                const auto     h     = curve.fields(0);
+                const double   sfa = real(h[2], curve.cards[0], "SFA", 1), sfo = real(h[3], curve.cards[0], "SFO", 1),
+                             offa = real(h[4], curve.cards[0], "OFFA"), offo = real(h[5], curve.cards[0], "OFFO");
+                for (unsigned int k = 1; k < curve.cards.size(); ++k)
+                  if (curve.cards[k].text.find_first_not_of(" \t") != std::string::npos)
+                    {
+                      const auto xy = curve.fields(k, {20, 20});
+                      points.emplace_back((sfa == 0 ? 1 : sfa) * (real(xy[0], curve.cards[k], "*DEFINE_CURVE A") + offa),
+                                          (sfo == 0 ? 1 : sfo) * (real(xy[1], curve.cards[k], "*DEFINE_CURVE O") + offo));
+                    }
+                if (points.empty() || points[0].first != 0)
+                  unsupported(mk, "LCSS " + std::to_string(lcss) + ": the curve must start at zero plastic strain");
+              }
+            else if (mk.cards.size() > 3 && real(d[0], c3, "ES1") > 0)
+              {
+                for (unsigned int i = 0; i < 8; ++i)
+                  {
+                    const double eps = real(c[i], c2, "EPS"), es = real(d[i], c3, "ES");
+                    if (i > 0 && eps == 0 && es == 0)
+                      break;
+                    points.emplace_back(eps, es);
+                  }
+              }
+            else
+              {
+                points.emplace_back(0., sigy);
+                if (etan > 0)
+                  points.emplace_back(1., sigy + E * etan / (E - etan));
+              }
+            std::string flow_curve;
+            for (const auto &[eps, es] : points)
+              flow_curve += (flow_curve.empty() ? "" : ", ") + w.number(eps) + ":" + w.number(es);
+            if (integer(b[3], c1, "LCSR") != 0)
+              not_default(mk, "LCSR", b[3]);
+            if (real(a[7], c0, "TDEL") != 0)
+              not_default(mk, "TDEL", a[7]);
+            w.set("Model", "piecewise linear plasticity");
+            w.enter("piecewise linear plasticity");
+            w.set("Density", real(a[1], c0, "RO"));
+            w.set("Young's modulus", E);
+            w.set("Poisson's ratio", real(a[3], c0, "PR"));
+            w.set("Flow curve", flow_curve);
+            w.set("Beyond the curve", "extrapolate");
+            const double C = real(b[0], c1, "C"), P = real(b[1], c1, "P"), vp = real(b[4], c1, "VP");
+            if (C > 0 && P > 0)
+              {
+                w.set("Cowper-Symonds C", C);
+                w.set("Cowper-Symonds p", P);
+                if (vp != 1)
+                  w.differ("*MAT_PIECEWISE_LINEAR_PLASTICITY VP = " + b[4] +
+                           ": Anvil's rate is the plastic strain rate (VP = 1)");
+              }
+            const double fail = real(a[6], c0, "FAIL");
+            if (fail < 0)
+              not_default(mk, "FAIL (allowed: a plastic strain >= 0)", a[6]);
+            if (fail > 0 && fail < 1e20)
+              w.set("Failure strain", fail);
             w.leave();
           }
         else if (mk.name == "MAT_JOHNSON_COOK" || mk.name == "MAT_015")

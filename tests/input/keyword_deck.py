@@ -17,6 +17,10 @@ test writes it
   names, general contact with *Friction, *Dynamic, Explicit);
 - as the two equivalent scenes, on the same mesh written as an ABAQUS .inp
   mesh file.
+The striker also as *MAT_PIECEWISE_LINEAR_PLASTICITY (MAT_024), its curve
+on a *DEFINE_CURVE and as EPS-ES pairs, against the scene with
+'piecewise linear plasticity'; the ABAQUS deck's *Plastic table is read as
+that model with the yield stress constant beyond the table.
 Checked: every deck's energy history equals its scene's, character for
 character; the scene that 'anvil --translate' prints runs the same; a deck
 run on two processes writes the probe history of one process (a probe
@@ -137,6 +141,22 @@ def steel_material(tangent, beta):
       set Cowper-Symonds C = 40
       set Cowper-Symonds p = 5
       set Strain rate effects = Cowper-Symonds
+    end"""
+
+
+def tabulated_material(beyond):
+    """The striker's steel as a flow curve (the ABAQUS deck's *Plastic
+    table, constant beyond it; LS-DYNA's *MAT_024, continued)."""
+    return f"""
+    set Model = piecewise linear plasticity
+    subsection piecewise linear plasticity
+      set Density = {steel['ro']}
+      set Young's modulus = {steel['e']}
+      set Poisson's ratio = {steel['pr']}
+      set Flow curve = 0:3.5e+08, 0.5:3.6e+08
+      set Beyond the curve = {beyond}
+      set Cowper-Symonds C = 40
+      set Cowper-Symonds p = 5
     end"""
 
 
@@ -301,12 +321,54 @@ for np_ in (1, 2):
 c.check_true("np = 2 writes the probe history of np = 1 (bitwise)", histories[0] is not None and
              histories[0] == histories[1])
 
+# @sect{*MAT_PIECEWISE_LINEAR_PLASTICITY}
+# The striker of the free-format deck as MAT_024 with its flow curve on a
+# *DEFINE_CURVE (LCSS) and as EPS-ES pairs: both run the equivalent scene
+# with 'piecewise linear plasticity', character for character; SIGY and
+# ETAN alone give the bilinear curve (E ETAN / (E - ETAN) its slope).
+free = keyword_deck("free")
+start = free["deck_free.k"].index("*mat_plastic_kinematic_title")
+end = free["deck_free.k"].index("*mat_elastic")
+mat024 = {
+    "lcss": "*MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE\nsteel\n1,7850.0,2.1e11,0.3,3.5e8,0.0,0.0,0.0\n"
+            "40.0,5.0,10,0,1.0\n*DEFINE_CURVE_TITLE\nflow\n10\n0.0,3.5e8\n0.5,3.6e8\n",
+    "pairs": "*MAT_024\n1,7850.0,2.1e11,0.3,0.0,0.0,0.0,0.0\n40.0,5.0,0,0,1.0\n0.0,0.5\n3.5e8,3.6e8\n",
+    "etan": "*MAT_024\n1,7850.0,2.1e11,0.3,3.5e8,1e9,0.0,0.0\n40.0,5.0,0,0,0.0\n",
+}
+with open(os.path.join(w, "mat024_scene.prm"), "w") as f:
+    f.write(lsdyna_scene.replace(steel_material(steel["etan"], 0), tabulated_material("extrapolate")))
+code, out, err = run_anvil(args.anvil, "mat024_scene.prm", cwd=w)
+c.check_true("the MAT_024 equivalent scene runs", code == 0, err.strip()[-300:])
+for form, card in mat024.items():
+    with open(os.path.join(w, f"mat024_{form}.k"), "w") as f:
+        f.write(free["deck_free.k"][:start] + card + free["deck_free.k"][end:])
+    code, out, err = run_anvil(args.anvil, f"mat024_{form}.k", cwd=w, extra_args=("--translate",))
+    if form == "etan":
+        eh = 2.1e11 * 1e9 / (2.1e11 - 1e9)
+        c.check_true(f"*MAT_024 with SIGY and ETAN: the curve 0:SIGY, 1:SIGY + E ETAN / (E - ETAN) "
+                     f"({3.5e8 + eh:.6g}), continued; VP = 0 listed as a difference",
+                     code == 0 and "set Model = piecewise linear plasticity" in out and
+                     f"set Flow curve = 0:3.5e+08, 1:{3.5e8 + eh!r}" in out and "VP = 0" in out,
+                     out[-600:] + err.strip()[-300:])
+        continue
+    code, out, err = run_anvil(args.anvil, f"mat024_{form}.k", cwd=w,
+                               extra_args=("--set", "Simulation/Print wall times=false"))
+    if c.check_true(f"*MAT_024 ({form}): the deck runs", code == 0, err.strip()[-300:]):
+        c.check_true(f"*MAT_024 ({form}): the energy history equals the scene's, character for character",
+                     energy(f"mat024_{form}") == energy("mat024_scene"))
+
+with open(os.path.join(w, "bad_lcss.k"), "w") as f:
+    f.write(open(os.path.join(w, "mat024_lcss.k")).read().replace("40.0,5.0,10,", "40.0,5.0,11,"))
+code, out, err = run_anvil(args.anvil, "bad_lcss.k", cwd=w, extra_args=("--check",))
+c.check_true("*MAT_024 whose LCSS names no curve: exit 2 and one line", code == 2 and
+             len(err.strip().splitlines()) == 1 and "LCSS 11" in err, err.strip()[:300])
+
 # @sect{A whole ABAQUS deck}
 Et = steel["e"] * ((3.6e8 - 3.5e8) / 0.5) / (steel["e"] + (3.6e8 - 3.5e8) / 0.5)
 abaqus_scene = ("set Bodies = striker, block\n"
                 "set Boundary conditions = bc1_bottom, bc2_xzero, bc3_xzero, bc4_yzero, bc5_yzero\n"
                 "set Contact pairs = pair\n" + common_scene.replace("set Time step safety factor = 0.8\n", "") +
-                body("striker", "PART1", "0, 0, -50", 0.1, 1.2, steel_material(Et, 1)) +
+                body("striker", "PART1", "0, 0, -50", 0.1, 1.2, tabulated_material("constant")) +
                 body("block", "PART2", "0, 0, 0", 0.1, 1.2, concrete_material()) +
                 condition("bc1_bottom", "block", "BOTTOM", "x, y, z") +
                 condition("bc2_xzero", "striker", "XZERO", "x") + condition("bc3_xzero", "block", "XZERO", "x") +
@@ -493,7 +555,10 @@ c.check_true("... with --case 101 it is valid", code == 0, err.strip()[:300])
 
 abaqus_errors = {
     "*Concrete Damaged Plasticity": ("*Density\n2400.0,\n", "*Density\n2400.0,\n*Concrete Damaged Plasticity\n"),
-    "three rows of *Plastic": ("3.6e8, 0.5\n", "3.6e8, 0.5\n3.7e8, 1.0\n"),
+    "three rows of *Plastic, hardening=KINEMATIC": ("*Plastic\n3.5e8, 0.\n3.6e8, 0.5\n",
+                                                    "*Plastic, hardening=KINEMATIC\n3.5e8, 0.\n3.6e8, 0.5\n"
+                                                    "3.7e8, 1.0\n"),
+    "a temperature column in *Plastic": ("3.6e8, 0.5\n", "3.6e8, 0.5, 20.\n"),
     "amplitude": ("*Boundary\n", "*Boundary, amplitude=A\n"),
 }
 for what, (old, new) in abaqus_errors.items():
