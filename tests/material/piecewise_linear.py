@@ -20,12 +20,15 @@ softening), E = 200 GPa, uniaxial stress to 10 % strain in steps of 1e-4:
   rate and strain, at every plastic row (the return's tolerance, 1e-9),
   and r within 1 % of the axial rate's plastic share at 5 %;
 - a one-point curve is perfectly plastic (300 MPa at 10 %, 1e-9);
+- erosion at 'Failure strain': the quarter bar of steel_erosion.prm pulled
+  to failure erodes elements, each at f_s or beyond, with the energy
+  balance below 1 %;
 - bad curves (not increasing, no point at 0, a slope below -3G, text) and
   C without p: exit 2 with one line naming the entry.
 """
 import os
 import subprocess
-from anvil_test import Checker, arguments, run_material_point
+from anvil_test import Checker, arguments, read_csv, run_anvil, run_material_point, test_scene
 
 args = arguments()
 c = Checker("piecewise linear plasticity at a material point")
@@ -110,6 +113,35 @@ c.check("Cowper-Symonds: effective plastic strain rate at 5 % against the axial 
 R = 1 + (d["effective_plastic_strain_rate"][i5] / C) ** (1 / P)
 print(f"  rate factor at 5 %: {R:.4f} (stress {d['stress_xx'][i5] / 1e6:.2f} MPa against the static "
       f"{flow(curve, d['effective_plastic_strain'][i5]) / 1e6:.2f})")
+
+# Erosion at 'Failure strain' (LS-DYNA's FAIL): the quarter bar of
+# tests/material/steel_erosion.prm pulled to failure at its held end, with
+# this model (Table 1 steel's bilinear curve, f_s = 0.12).
+fs = 0.12
+prm = test_scene(args, "tests/material/steel_erosion.prm", "erosion", text=f"""
+subsection Body bar
+  subsection Material
+    set Model = piecewise linear plasticity
+    subsection piecewise linear plasticity
+      set Density = 7850
+      set Young's modulus = 206e9
+      set Poisson's ratio = 0.3
+      set Flow curve = 0:335e6, 1:{335e6 + 206e9 * 1.2e9 / (206e9 - 1.2e9)!r}
+      set Failure strain = {fs}
+    end
+  end
+end
+""")
+code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+if c.check_true("erosion scene: anvil exits 0", code == 0, err.strip()[-300:]):
+    d = os.path.join(args.work_dir, "output", "erosion")
+    erosion = read_csv(os.path.join(d, "erosion.csv"))
+    energy = read_csv(os.path.join(d, "energy.csv"))
+    c.check_true("erosion scene: elements eroded", len(erosion.get("element", [])) > 0)
+    c.check_below("erosion scene: f_s - smallest effective plastic strain of an eroded element",
+                  fs - min(erosion["effective_plastic_strain"]), 0.0)
+    c.check_below("erosion scene: largest energy balance error (with the eroded energy)",
+                  max(energy["balance_error"]), 0.01)
 
 bad = {
     "not increasing": material([(0.0, 300e6), (0.02, 350e6), (0.01, 360e6)]),
