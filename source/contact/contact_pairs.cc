@@ -62,11 +62,25 @@ namespace anvil::Contact
         pair_body.push_back({{body[0], body[1]}});
         for (unsigned int s = 0; s < 2; ++s)
           {
+            // The body's boundary faces; and of an eroding body, its
+            // interior faces too, each from both sides, in the surface once
+            // the element across has eroded (eroding contact: the faces
+            // an eroded element exposes; not across a refinement
+            // interface, whose faces do not match).
+            const bool          eroding = bodies[body[s]].material->erodes();
             std::vector<double> local;
+            auto                across  = [&](const auto &cell, const unsigned int f) -> double {
+              if (cell->face(f)->at_boundary())
+                return -1.;
+              if (!eroding || cell->face(f)->has_children() || cell->neighbor_is_coarser(f) ||
+                  cell->neighbor(f)->material_id() != body[s])
+                return -2.;
+              return double(element_id(cell->neighbor(f)->active_cell_index()));
+            };
             for (const auto &cell : dof_handler.active_cell_iterators())
               if (cell->is_locally_owned() && cell->material_id() == body[s])
                 for (const unsigned int f : cell->face_indices())
-                  if (cell->face(f)->at_boundary())
+                  if (const double neighbour = across(cell, f); neighbour != -2.)
                     {
                       const auto   face     = cell->face(f);
                       const double V        = cell->measure();
@@ -99,9 +113,10 @@ namespace anvil::Contact
                       local.push_back(element_id(cell->active_cell_index()));
                       for (unsigned int k = 0; k < 4; ++k)
                         local.push_back(scene_vertex_index(face->vertex_index(flip ? cyclic[3 - k] : cyclic[k])));
+                      local.push_back(neighbour);
                     }
             for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
-              for (std::size_t i = 0; i < part.size(); i += 23)
+              for (std::size_t i = 0; i < part.size(); i += 24)
                 {
                   Contact::SegmentDescription d;
                   for (unsigned int k = 0; k < 4; ++k)
@@ -113,6 +128,8 @@ namespace anvil::Contact
                   d.element   = static_cast<unsigned long>(part[i + 18]);
                   for (unsigned int k = 0; k < 4; ++k)
                     d.vertex[k] = static_cast<std::uint64_t>(part[i + 19 + k]);
+                  if (part[i + 23] >= 0)
+                    d.neighbour = static_cast<unsigned long>(part[i + 23]);
                   segments[s].push_back(d);
                 }
           }

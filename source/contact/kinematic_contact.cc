@@ -168,6 +168,7 @@ namespace anvil::Contact
         const auto order = order_segments(segs, index);
         Surface &surf = surface[s];
         surf.segments.clear(), surf.element.clear(), surf.active.clear(), surf.depth.clear();
+        surf.neighbour.clear(), surf.dead.clear();
         surf.max_depth = 0, surf.min_depth = 1e300;
         std::vector<char> on_surface(dofs.size(), 0);
         for (const auto &[n, k] : order)
@@ -185,7 +186,9 @@ namespace anvil::Contact
             const double h = A > 0 ? segs[k].volume / A : 0.;
             surf.segments.push_back(n);
             surf.element.push_back(segs[k].element);
-            surf.active.push_back(1);
+            surf.active.push_back(segs[k].neighbour == SegmentDescription::no_neighbour ? 1 : 0);
+            surf.neighbour.push_back(segs[k].neighbour);
+            surf.dead.push_back(0);
             surf.depth.push_back(h);
             surf.max_depth = std::max(surf.max_depth, h);
             if (h > 0)
@@ -219,12 +222,19 @@ namespace anvil::Contact
   }
 
 
+  // As PenaltyContact's: an eroded element's faces leave, the interior
+  // faces it exposes on living elements join.
   void KinematicContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
     for (auto &surf : surface)
-      for (unsigned int k = 0; k < surf.segments.size(); ++k)
-        if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
-          surf.active[k] = 0;
+      {
+        for (unsigned int k = 0; k < surf.segments.size(); ++k)
+          if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
+            surf.active[k] = 0, surf.dead[k] = 1;
+        for (unsigned int k = 0; k < surf.segments.size(); ++k)
+          if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
+            surf.active[k] = 1;
+      }
   }
 
 
@@ -239,10 +249,11 @@ namespace anvil::Contact
     const bool adapted = ar.is_loading() && ar.element_transfer() != nullptr;
     for (auto &surf : surface)
       {
-        std::vector<char> active = surf.active;
+        std::vector<char> active = surf.active, dead = surf.dead;
         ar &active;
+        ar &dead;
         if (!adapted)
-          surf.active = active;
+          surf.active = active, surf.dead = dead;
       }
     ar &previous_shape_load &previous_centre &has_previous &work &last_result;
     const unsigned int         n_nodes = dofs.size();

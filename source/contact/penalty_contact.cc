@@ -229,10 +229,11 @@ namespace anvil::Contact
     const bool adapted = ar.is_loading() && ar.element_transfer() != nullptr;
     for (auto &surf : surface)
       {
-        std::vector<bool> active = surf.active;
+        std::vector<bool> active = surf.active, dead = surf.dead;
         ar &active;
+        ar &dead;
         if (!adapted)
-          surf.active = active;
+          surf.active = active, surf.dead = dead;
       }
     ar &spring_work;
     std::uint64_t n_previous = previous_position.size();
@@ -440,6 +441,8 @@ namespace anvil::Contact
         surf.volume.clear();
         surf.element.clear();
         surf.active.clear();
+        surf.neighbour.clear();
+        surf.dead.clear();
         surf.node_segments.assign(dofs.size(), {});
         std::map<unsigned long, std::vector<unsigned int>> element_segments;
         for (const auto &[n, k] : order)
@@ -451,7 +454,9 @@ namespace anvil::Contact
             surf.bulk.push_back(segs[k].bulk_modulus);
             surf.volume.push_back(segs[k].volume);
             surf.element.push_back(segs[k].element);
-            surf.active.push_back(true);
+            surf.active.push_back(segs[k].neighbour == SegmentDescription::no_neighbour);
+            surf.neighbour.push_back(segs[k].neighbour);
+            surf.dead.push_back(false);
           }
         // The thickest element's reference thickness V / A.
         surf.max_reference_depth = 0;
@@ -587,12 +592,19 @@ namespace anvil::Contact
   }
 
 
+  // An eroded element's faces leave; the interior faces it exposes on
+  // the elements that live join (eroding contact).
   void PenaltyContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
     for (auto &surf : surface)
-      for (unsigned int k = 0; k < surf.segments.size(); ++k)
-        if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
-          surf.active[k] = false;
+      {
+        for (unsigned int k = 0; k < surf.segments.size(); ++k)
+          if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
+            surf.active[k] = false, surf.dead[k] = true;
+        for (unsigned int k = 0; k < surf.segments.size(); ++k)
+          if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
+            surf.active[k] = true;
+      }
   }
 
 

@@ -201,7 +201,8 @@ namespace anvil::Deck
         else if (n == "LOAD_BODY_X" || n == "LOAD_BODY_Y" || n == "LOAD_BODY_Z")
           body_loads.push_back(&kw);
         else if (n == "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE" || n == "CONTACT_SURFACE_TO_SURFACE" ||
-                 n == "CONTACT_AUTOMATIC_NODES_TO_SURFACE" || n == "CONTACT_NODES_TO_SURFACE")
+                 n == "CONTACT_AUTOMATIC_NODES_TO_SURFACE" || n == "CONTACT_NODES_TO_SURFACE" ||
+                 n == "CONTACT_ERODING_SURFACE_TO_SURFACE" || n == "CONTACT_ERODING_NODES_TO_SURFACE")
           contacts.push_back(&kw);
         else if (n == "CONTROL_TERMINATION")
           termination = &kw;
@@ -626,7 +627,11 @@ namespace anvil::Deck
         const Keyword &kw = *kwp;
         if (kw.cards.empty())
           unsupported(kw, "a card is missing");
-        const auto a = kw.fields(0), b = kw.fields(1), c = kw.fields(2), d = kw.fields(3);
+        // (The eroding contacts' fourth card, ISYM EROSOP IADJ, comes
+        // before the optional card A: Anvil's surfaces take in the faces an
+        // eroded element exposes in every pair, doc/theory.md.)
+        const unsigned int card_a = kw.name.find("ERODING") != std::string::npos ? 4 : 3;
+        const auto a = kw.fields(0), b = kw.fields(1), c = kw.fields(2), d = kw.fields(card_a);
         auto side = [&](const std::string &id, const std::string &type, const std::string &what) {
           const long        sid = integer(id, kw.cards[0], what + "ID");
           const long        t   = integer(type, kw.cards[0], what + "TYP");
@@ -677,13 +682,13 @@ namespace anvil::Deck
         const double sfm = kw.cards.size() > 2 ? real(c[1], cc, "SFM", 1) : 1;
         // Optional card A: SOFT = 0, or 1 (the penalty from the nodal
         // masses and the step, SOFSCL 0.1 by default).
-        const long soft = kw.cards.size() > 3 ? integer(d[0], kw.cards[3], "SOFT") : 0;
+        const long soft = kw.cards.size() > card_a ? integer(d[0], kw.cards[card_a], "SOFT") : 0;
         if (soft != 0 && soft != 1)
           not_default(kw, "SOFT (allowed: 0, 1)", d[0]);
         double sofscl = 0;
         if (soft == 1)
           {
-            sofscl = real(d[1], kw.cards[3], "SOFSCL", 0.1);
+            sofscl = real(d[1], kw.cards[card_a], "SOFSCL", 0.1);
             if (sofscl == 0)
               sofscl = 0.1;
             if (!(sofscl <= 0.4))

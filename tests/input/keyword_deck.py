@@ -299,6 +299,18 @@ for style in ("fixed", "free", "long"):
     c.check_true(f"{style} format: the warning lists what is only output (*DATABASE_MATSUM)",
                  "*DATABASE_MATSUM" in out)
 
+# *CONTACT_ERODING_SURFACE_TO_SURFACE (its fourth card ISYM EROSOP IADJ):
+# Anvil's pairs take in the faces eroded elements expose in any case, so
+# the deck runs the scene (no element erodes here).
+free_deck = keyword_deck("free")["deck_free.k"]
+old_contact = "*contact_automatic_surface_to_surface\n1,2,3,3\n0.2,0.1,0.0,0.0,0.0\n1.0,1.0\n"
+assert old_contact in free_deck
+with open(os.path.join(w, "eroding.k"), "w") as f:
+    f.write(free_deck.replace(old_contact, old_contact.replace("automatic", "eroding") + "0,1,1\n"))
+code, out, err = run_anvil(args.anvil, "eroding.k", cwd=w, extra_args=("--set", "Simulation/Print wall times=false"))
+c.check_true("*CONTACT_ERODING_SURFACE_TO_SURFACE: the energy history equals the scene's, character for character",
+             code == 0 and energy("eroding") == reference, err.strip()[-300:])
+
 # The translation as a scene of its own.
 code, out, err = run_anvil(args.anvil, "deck_fixed.k", cwd=w, extra_args=("--translate",))
 with open(os.path.join(w, "translated.prm"), "w") as f:

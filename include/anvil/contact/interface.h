@@ -59,6 +59,13 @@ namespace anvil::Contact
     unsigned long element = 0;
     /** The scene vertices of the four nodes (checkpoint keys). */
     std::array<std::uint64_t, 4> vertex = {{0, 0, 0, 0}};
+    /** For an interior face of an eroding body, the element on its other
+        side: the face joins the surface when that element erodes (and its
+        own element lives), as the faces an eroded element exposes do in
+        LS-DYNA's eroding contact. no_neighbour: a face of the body's
+        boundary, in the surface from the start. */
+    static constexpr unsigned long no_neighbour = ~0ul;
+    unsigned long                  neighbour    = no_neighbour;
   };
 
   /** What a contact evaluation reports. */

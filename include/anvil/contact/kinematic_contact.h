@@ -116,6 +116,10 @@ namespace anvil::Contact
       std::vector<std::array<unsigned int, 4>> segments;
       std::vector<unsigned long>               element;
       std::vector<char>                        active;
+      /** As PenaltyContact's Surface: the element across an interior face
+          of an eroding body, and whether the segment's own has eroded. */
+      std::vector<unsigned long>               neighbour;
+      std::vector<char>                        dead;
       std::vector<double>                      depth;
       /** The pair nodes on this surface. */
       std::vector<unsigned int> nodes;

@@ -35,9 +35,15 @@ namespace anvil::Contact
         current area A). Units: Pa, m^3. */
     std::vector<double> bulk, volume;
     /** Scene-wide id of each segment's element, and whether the segment
-        still takes part (its element has not been eroded). */
+        takes part (its element has not been eroded, and it is on the
+        boundary or the element across it has been). For the interior
+        faces of an eroding body: the element across (else
+        SegmentDescription::no_neighbour), and whether its own element has
+        eroded. */
     std::vector<unsigned long> element;
     std::vector<bool>          active;
+    std::vector<unsigned long> neighbour;
+    std::vector<bool>          dead;
     /** Segments around each node of the pair's node list. */
     std::vector<std::vector<unsigned int>> node_segments;
     /** The other segments of each segment's element on this surface (a
