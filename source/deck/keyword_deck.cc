@@ -35,7 +35,7 @@ namespace anvil::Deck
   {
     const char *supported =
       "*NODE, *ELEMENT_SOLID, *PART, *SECTION_SOLID, *HOURGLASS, *MAT_ELASTIC/_PLASTIC_KINEMATIC/"
-      "_PIECEWISE_LINEAR_PLASTICITY/_JOHNSON_COOK/_RIGID, *EOS_LINEAR_POLYNOMIAL, *SET_, *DEFINE_, *INITIAL_VELOCITY, *BOUNDARY_SPC/_PRESCRIBED_MOTION, "
+      "_PIECEWISE_LINEAR_PLASTICITY/_JOHNSON_COOK/_RIGID/_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL, *SET_, *DEFINE_, *INITIAL_VELOCITY, *BOUNDARY_SPC/_PRESCRIBED_MOTION, "
       "*RIGIDWALL_PLANAR, *CONTACT_, *LOAD_BODY_X/Y/Z, *CONTROL_, *DATABASE_; doc/decks.md lists them";
 
     // Keywords that request output or describe the run without changing
@@ -117,7 +117,8 @@ namespace anvil::Deck
 
     // @sect4{What the deck defines}
     std::map<long, Part>                        parts;
-    std::map<long, const Keyword *>             sections, materials, eoses, hourglasses, curves, systems;
+    std::map<long, const Keyword *>             sections, materials, eoses, hourglasses, curves, systems,
+                                                add_erosion;
     std::map<long, std::vector<long>>           part_sets;
     std::vector<const Keyword *>                velocities, spcs, walls, contacts, prescribed, body_loads;
     const Keyword *termination = nullptr, *timestep = nullptr, *bulk = nullptr, *control_hourglass = nullptr,
@@ -204,6 +205,16 @@ namespace anvil::Deck
                  n == "CONTACT_AUTOMATIC_NODES_TO_SURFACE" || n == "CONTACT_NODES_TO_SURFACE" ||
                  n == "CONTACT_ERODING_SURFACE_TO_SURFACE" || n == "CONTACT_ERODING_NODES_TO_SURFACE")
           contacts.push_back(&kw);
+        else if (n == "MAT_ADD_EROSION")
+          add_erosion[id_of(kw)] = &kw;
+        else if (n == "CONTROL_SHELL")
+          w.ignore("*CONTROL_SHELL (the deck has no shells)");
+        else if (n == "CONTROL_SOLID")
+          w.ignore("*CONTROL_SOLID (its options concern tetrahedra, wedges and degenerate elements; Anvil takes "
+                   "8-node hexahedra only)");
+        else if (n == "CONTROL_ACCURACY")
+          w.ignore("*CONTROL_ACCURACY (Anvil's stress update is always objective, Hughes-Winget, and node "
+                   "numbering does not change its results)");
         else if (n == "CONTROL_TERMINATION")
           termination = &kw;
         else if (n == "CONTROL_TIMESTEP")
@@ -458,6 +469,39 @@ namespace anvil::Deck
         unsupported(kw, "curve " + std::to_string(lcid) +
                           " is not constant: Anvil prescribes constant velocities only");
       return (sfo == 0 ? 1 : sfo) * *ordinates.begin() + offo;
+    };
+    // A material's failure plastic strain: its own (0: none) and
+    // *MAT_ADD_EROSION's EFFEPS, the smaller where both are given. Of
+    // *MAT_ADD_EROSION's criteria only EFFEPS is read; a criterion counts
+    // as given when it differs from EXCL (0 by default), and any other
+    // given one is refused.
+    auto failure_strain = [&](const Keyword &mk, const double own) {
+      const auto e = add_erosion.find(id_of(mk));
+      if (e == add_erosion.end())
+        return own;
+      const Keyword &kw   = *e->second;
+      const auto     f    = kw.fields(0), g = kw.fields(1);
+      const double   excl = real(f[1], kw.cards[0], "EXCL");
+      const auto     given = [&](const std::string &field, const Card &card, const std::string &name) {
+        const double v = real(field, card, name);
+        return v != excl && !(excl == 0 && v == 0);
+      };
+      static const char *names[2][8] = {{"MID", "EXCL", "MXPRES", "MNEPS", "EFFEPS", "VOLEPS", "NUMFIP", "NCS"},
+                                        {"MNPRES", "SIGP1", "SIGVM", "MXEPS", "EPSSH", "SIGTH", "IMPULSE", "FAILTM"}};
+      for (unsigned int c = 0; c < 2 && c < kw.cards.size(); ++c)
+        for (unsigned int i = 0; i < 8; ++i)
+          {
+            const std::string name = names[c][i];
+            if (name == "MID" || name == "EXCL" || name == "EFFEPS" || name == "NUMFIP" || name == "NCS")
+              continue;
+            if (given(c == 0 ? f[i] : g[i], kw.cards[c], name))
+              not_default(kw, name + " (Anvil's erosion criterion is the effective plastic strain, EFFEPS)",
+                          c == 0 ? f[i] : g[i]);
+          }
+      if (!given(f[4], kw.cards[0], "EFFEPS"))
+        return own;
+      const double effeps = real(f[4], kw.cards[0], "EFFEPS");
+      return own > 0 ? std::min(own, effeps) : effeps;
     };
     for (const Keyword *kwp : prescribed)
       {
@@ -901,6 +945,10 @@ namespace anvil::Deck
                              3 * real(a[2], mk.cards[0], "G") : real(a[2], mk.cards[0], "E");
             wall_density = real(a[1], mk.cards[0], "RO");
           }
+        if (add_erosion.count(p.mid) && !(mk.name == "MAT_PLASTIC_KINEMATIC" || mk.name == "MAT_003" ||
+                                          mk.name == "MAT_PIECEWISE_LINEAR_PLASTICITY" || mk.name == "MAT_024"))
+          unsupported(*add_erosion.at(p.mid), "on *" + mk.name + " (Anvil reads it for *MAT_PLASTIC_KINEMATIC and "
+                                              "*MAT_PIECEWISE_LINEAR_PLASTICITY; Johnson-Cook erodes at its damage)");
         const Card &c0 = mk.cards[0];
         const Card &c1 = mk.cards.size() > 1 ? mk.cards[1] : c0;
         const Card &c2 = mk.cards.size() > 2 ? mk.cards[2] : c0;
@@ -946,9 +994,9 @@ namespace anvil::Deck
               }
             else
               w.set("Strain rate effects", "none");
-            if (fs > 0)
+            if (const double f = failure_strain(mk, fs); f > 0)
               {
-                w.set("Failure strain", fs);
+                w.set("Failure strain", f);
                 w.set("Erosion", "true");
               }
             w.leave();
@@ -1025,8 +1073,8 @@ namespace anvil::Deck
             const double fail = real(a[6], c0, "FAIL");
             if (fail < 0)
               not_default(mk, "FAIL (allowed: a plastic strain >= 0)", a[6]);
-            if (fail > 0 && fail < 1e20)
-              w.set("Failure strain", fail);
+            if (const double f = failure_strain(mk, fail < 1e20 ? fail : 0.); f > 0)
+              w.set("Failure strain", f);
             w.leave();
           }
         else if (mk.name == "MAT_JOHNSON_COOK" || mk.name == "MAT_015")

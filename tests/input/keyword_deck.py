@@ -369,6 +369,44 @@ for form, card in mat024.items():
         c.check_true(f"*MAT_024 ({form}): the energy history equals the scene's, character for character",
                      energy(f"mat024_{form}") == energy("mat024_scene"))
 
+# *MAT_ADD_EROSION: EFFEPS is the same failure strain as MAT_024's FAIL
+# (criteria equal to EXCL are bypassed); another criterion, or the keyword
+# on an elastic material, is refused.
+lcss_deck = open(os.path.join(w, "mat024_lcss.k")).read()
+fail_card = "1,7850.0,2.1e11,0.3,3.5e8,0.0,0.0,0.0\n"
+assert fail_card in lcss_deck
+with open(os.path.join(w, "fail.k"), "w") as f:
+    f.write(lcss_deck.replace(fail_card, "1,7850.0,2.1e11,0.3,3.5e8,0.0,0.02,0.0\n"))
+add = "*MAT_ADD_EROSION\n1,1234,1234,1234,0.02,1234,1,1\n1234,1234,1234,1234,1234,1234,1234,1234\n"
+with open(os.path.join(w, "add_erosion.k"), "w") as f:
+    f.write(lcss_deck.replace("*DEFINE_CURVE_TITLE", add + "*DEFINE_CURVE_TITLE"))
+runs = {}
+for name in ("fail", "add_erosion"):
+    code, out, err = run_anvil(args.anvil, f"{name}.k", cwd=w, extra_args=("--set", "Simulation/Print wall times=false"))
+    runs[name] = (code, out, err)
+code, out, err = run_anvil(args.anvil, "add_erosion.k", cwd=w, extra_args=("--translate",))
+c.check_true("*MAT_ADD_EROSION EFFEPS 0.02 (EXCL 1234): 'Failure strain = 0.02', and the run of MAT_024 FAIL = "
+             "0.02, character for character", all(r[0] == 0 for r in runs.values()) and
+             energy("fail") == energy("add_erosion") and "set Failure strain = 0.02" in out,
+             (runs["fail"][2] + runs["add_erosion"][2] + err).strip()[-300:])
+for what, deck in (("MXEPS", lcss_deck.replace("*DEFINE_CURVE_TITLE", "*MAT_ADD_EROSION\n1,0,0,0,0.02\n0,0,0,0.3\n"
+                                               "*DEFINE_CURVE_TITLE")),
+                   ("on *MAT_ELASTIC", lcss_deck.replace("*DEFINE_CURVE_TITLE", "*MAT_ADD_EROSION\n2,0,0,0,0.02\n"
+                                                         "*DEFINE_CURVE_TITLE"))):
+    with open(os.path.join(w, "bad_add.k"), "w") as f:
+        f.write(deck)
+    code, out, err = run_anvil(args.anvil, "bad_add.k", cwd=w, extra_args=("--check",))
+    c.check_true(f"*MAT_ADD_EROSION {what}: exit 2 and one line naming it", code == 2 and
+                 len(err.strip().splitlines()) == 1 and "MAT_ADD_EROSION" in err, err.strip()[:300])
+# *CONTROL_SHELL, _SOLID, _ACCURACY change nothing for a deck of hexahedra:
+# listed in the warning, the run unchanged.
+with open(os.path.join(w, "controls.k"), "w") as f:
+    f.write(free_deck.replace("*include", "*control_accuracy\n1,4\n*control_solid\n1\n*control_shell\n20.0\n*include"))
+code, out, err = run_anvil(args.anvil, "controls.k", cwd=w, extra_args=("--set", "Simulation/Print wall times=false"))
+c.check_true("*CONTROL_ACCURACY, _SOLID, _SHELL: listed in the warning, the scene's run", code == 0 and
+             energy("controls") == reference and all(k in out for k in ("*CONTROL_ACCURACY", "*CONTROL_SOLID",
+                                                                        "*CONTROL_SHELL")), err.strip()[-300:])
+
 with open(os.path.join(w, "bad_lcss.k"), "w") as f:
     f.write(open(os.path.join(w, "mat024_lcss.k")).read().replace("40.0,5.0,10,", "40.0,5.0,11,"))
 code, out, err = run_anvil(args.anvil, "bad_lcss.k", cwd=w, extra_args=("--check",))
