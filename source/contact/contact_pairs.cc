@@ -312,8 +312,11 @@ namespace anvil::Contact
           std::max(contact_frequency_squared, contact_results[p].frequency_squared);
         record_result(p);
         springs_across_partitions += contact_results[p].n_springs_across_partitions;
-        // Every rank has the whole pair's friction work.
+        // Every rank has the whole pair's friction work, and the energy of
+        // the springs an erosion made or took away (booked as removed: not
+        // work of the motion).
         energies.friction += contact_results[p].friction_work;
+        energies.removed -= contact_results[p].topology_energy;
         for (const auto &[i, local] : owned_index[p])
           for (unsigned int d = 0; d < 3; ++d)
             force.local_element(local + d) += fs[3 * i + d];

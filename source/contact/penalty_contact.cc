@@ -594,17 +594,56 @@ namespace anvil::Contact
 
   // An eroded element's faces leave; the interior faces it exposes on
   // the elements that live join (eroding contact).
+  // The springs this changes (those of the nodes on a changed segment,
+  // or pressed against one) are booked at the next evaluation
+  // (topology_energy).
   void PenaltyContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
+    bool any = false;
     for (auto &surf : surface)
       {
+        if (!topology_pending)
+          surf.changed.assign(surf.segments.size(), 0);
         for (unsigned int k = 0; k < surf.segments.size(); ++k)
-          if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
-            surf.active[k] = false, surf.dead[k] = true;
-        for (unsigned int k = 0; k < surf.segments.size(); ++k)
-          if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
-            surf.active[k] = true;
+          {
+            const bool before = surf.active[k];
+            if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
+              surf.active[k] = false, surf.dead[k] = true;
+            else if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
+              surf.active[k] = true;
+            if (surf.active[k] != before)
+              surf.changed[k] = 1, any = true;
+          }
       }
+    if (!any)
+      return;
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        if (!topology_pending)
+          topology_node[s].assign(dofs.size(), 0);
+        const Surface &own = surface[s], &other = surface[1 - s];
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          {
+            for (const unsigned int k : own.node_segments[i])
+              topology_node[s][i] |= own.changed[k];
+            if (i < partner[s].size() && partner[s][i] >= 0)
+              topology_node[s][i] |= other.changed[partner[s][i]];
+          }
+      }
+    topology_pending = true;
+  }
+
+
+  // The work terms of pass @p s's own springs that appeared or vanished
+  // with an erosion (topology_term()).
+  double PenaltyContact::topology_step(const unsigned int s) const
+  {
+    double energy = 0;
+    if (topology_pending)
+      for (const unsigned int i : halo->own_nodes[s])
+        energy += topology_term(s, i, last_spring_force[s][i], spring_force[s][i], last_spring_depth[s][i],
+                                spring_depth[s][i]);
+    return energy;
   }
 
 
@@ -657,7 +696,8 @@ namespace anvil::Contact
         spring_load.resize(dofs.size(), 0.);
         const unsigned int a = has_analytic(0) ? 0 : 1;
         analytic_pass(1 - a, x, v, dt, f, result);
-        result.energy = spring_work;
+        result.energy    = spring_work;
+        topology_pending = false;
         return result;
       }
 
@@ -699,7 +739,15 @@ namespace anvil::Contact
     exchange_touches();
     apply_touches(xh, f);
 
-    double work = spring_work_step(1) + (symmetric ? spring_work_step(0) : 0.);
+    // A spring that starts on a segment an erosion has just exposed.
+    if (topology_pending)
+      for (const unsigned int s : {1u, symmetric ? 0u : 1u})
+        for (const unsigned int i : h.own_nodes[s])
+          if (last_spring_force[s][i] == 0 && spring_force[s][i] != 0 && partner[s][i] >= 0 &&
+              surface[1 - s].changed[partner[s][i]])
+            topology_node[s][i] = 1;
+    double topology = topology_step(1) + (symmetric ? topology_step(0) : 0.);
+    double work     = spring_work_step(1) + (symmetric ? spring_work_step(0) : 0.);
     if (rigid)
       {
         // The gradient forces' work needs this step's positions next step.
@@ -712,13 +760,14 @@ namespace anvil::Contact
       {
         // The pair's sums and maxima over the ranks (the sums to round-off
         // of the order of one process; the motion does not depend on them).
-        double sums[11] = {result.force_on_first[0], result.force_on_first[1], result.force_on_first[2],
+        double sums[12] = {result.force_on_first[0], result.force_on_first[1], result.force_on_first[2],
                            result.friction_on_first[0], result.friction_on_first[1],
                            result.friction_on_first[2], result.friction_work, work, double(result.n_active),
-                           double(result.n_passed_through), double(result.n_springs_across_partitions)};
+                           double(result.n_passed_through), double(result.n_springs_across_partitions),
+                           topology};
         double maxima[4] = {result.frequency_squared, result.max_penetration, result.max_penetration_ratio,
                             result.passed_through_ratio};
-        MPI_Allreduce(MPI_IN_PLACE, sums, 11, MPI_DOUBLE, MPI_SUM, h.comm);
+        MPI_Allreduce(MPI_IN_PLACE, sums, 12, MPI_DOUBLE, MPI_SUM, h.comm);
         MPI_Allreduce(MPI_IN_PLACE, maxima, 4, MPI_DOUBLE, MPI_MAX, h.comm);
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -730,13 +779,16 @@ namespace anvil::Contact
         result.n_active                    = static_cast<unsigned int>(sums[8]);
         result.n_passed_through            = static_cast<unsigned int>(sums[9]);
         result.n_springs_across_partitions = static_cast<unsigned int>(sums[10]);
+        topology                           = sums[11];
         result.frequency_squared           = maxima[0];
         result.max_penetration             = maxima[1];
         result.max_penetration_ratio       = maxima[2];
         result.passed_through_ratio        = maxima[3];
       }
     spring_work += work;
-    result.energy = spring_work;
+    result.energy          = spring_work;
+    result.topology_energy = topology;
+    topology_pending       = false;
     return result;
   }
 
@@ -1256,6 +1308,7 @@ namespace anvil::Contact
               target_mark[i] = 1;
               records.insert(records.end(), {double(i), 0.5 * (old_spring_force[i] + f1[i]) *
                                                           (l1[i] - old_spring_depth[i])});
+              records[8] += topology_term(slave_index, i, old_spring_force[i], f1[i], old_spring_depth[i], l1[i]);
             }
       for (const auto *list : {&springs_now, &springs_before})
         for (const unsigned int i : *list)
@@ -1341,6 +1394,7 @@ namespace anvil::Contact
         result.n_active += static_cast<unsigned int>(h[3]);
         const std::size_t c = h[4], sp = h[5], ge = h[6];
         result.n_springs_across_partitions += static_cast<unsigned int>(h[7]);
+        result.topology_energy += h[8];
         const std::size_t base    = (h - all) + header_size;
         const std::size_t springs = base + contact_record_size * c, geometric = springs + 2 * sp;
         for (std::size_t q = 0; q < c; ++q)

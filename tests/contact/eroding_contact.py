@@ -16,10 +16,10 @@ earlier code: only the top layer eroded, 36 elements, and the mean force
   at least half the largest force before the first erosion;
 - np = 2 writes the contact history and erodes the elements of np = 1
   (bitwise);
-- the energy balance within 10 % (a guard: when an element erodes the
-  springs on its faces leave with their energy, and an exposed face's
-  springs start compressed; measured 5.3 %, 7.3 % without the exposed
-  faces; doc/theory.md).
+- the energy balance within 1 %: the springs an erosion takes away (on
+  the eroded element's faces) or makes (compressed on an exposed face) are
+  booked as 'removed', not as work of the motion (4.8 % of the work done
+  here; without that booking the balance was off by 5.3 %).
 """
 import os
 from anvil_test import Checker, arguments, read_csv, run_anvil, test_scene
@@ -55,5 +55,8 @@ c.check_below("-(mean force 2-3 mm deep / largest force before the first erosion
 same = all(open(os.path.join(out[1], f)).read() == open(os.path.join(out[2], f)).read()
            for f in ("contact_push.csv", "erosion.csv"))
 c.check_true("np = 2 writes np = 1's contact history and erosion.csv (bitwise)", same)
-c.check_below("largest energy balance error (a guard; see the docstring)", max(energy["balance_error"]), 0.10)
+print(f"  energy of the springs erosion took away or made, booked as removed: {energy['removed'][-1]:.3f} J of "
+      f"{energy['external_work'][-1]:.2f} J of external work")
+c.check_below("largest energy balance error (springs changed by erosion booked as removed)",
+              max(energy["balance_error"]), 0.01)
 c.finish()

@@ -92,6 +92,13 @@ namespace anvil::Contact
         stored in sticking tangential springs), >= 0 for sliding, and
         dissipated by the normal damping. Units: J. */
     double friction_work = 0;
+    /** The springs' energy made (+) or lost (-) this step by a change of
+        the surfaces rather than by motion: a spring on a face that an
+        eroded element took away, or one that starts compressed on a face
+        an eroded element exposed. The contact energy counts it; the
+        simulator books its negative as 'removed', so the balance stays
+        closed. Units: J. */
+    double topology_energy = 0;
     /** Sum of the friction forces on the first body's nodes. Units: N. */
     std::array<double, 3> friction_on_first = {{0, 0, 0}};
     /** Resultant force and torque (about the body's centre) on a rigid

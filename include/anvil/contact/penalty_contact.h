@@ -44,6 +44,9 @@ namespace anvil::Contact
     std::vector<bool>          active;
     std::vector<unsigned long> neighbour;
     std::vector<bool>          dead;
+    /** Segments whose activity the last erosion changed (until the next
+        evaluation books the springs it made or took away). */
+    std::vector<char>          changed;
     /** Segments around each node of the pair's node list. */
     std::vector<std::vector<unsigned int>> node_segments;
     /** The other segments of each segment's element on this surface (a
@@ -267,6 +270,18 @@ namespace anvil::Contact
         surface, its own nodes) from last step's and this step's spring
         forces and penetrations. */
     double spring_work_step(unsigned int s) const;
+    /** The nodes of each pass whose spring an erosion may have made or
+        taken away (their own segments or their partner changed), whether
+        any erosion is pending, and of such a node's work terms those of a
+        spring that appeared or vanished: topology_energy. */
+    std::vector<char> topology_node[2];
+    bool              topology_pending = false;
+    double            topology_term(unsigned int s, unsigned int i, double f0, double f1, double l0,
+                                    double l1) const
+    {
+      return topology_pending && topology_node[s][i] && ((f0 != 0) != (f1 != 0)) ? 0.5 * (f0 + f1) * (l1 - l0) : 0.;
+    }
+    double topology_step(unsigned int s) const;
     /** The work this step of the gradient forces of pass @p s (against a
         rigid mesh) over the nodes' motion since @p previous_position. */
     double gradient_work_step(unsigned int s, const std::vector<double> &x) const;
@@ -381,7 +396,7 @@ namespace anvil::Contact
         ratio, active nodes, the counts of the three kinds, springs across
         partitions), then per node in contact 16 numbers, per spring-work
         term 2 (key, value). */
-    static constexpr std::size_t header_size = 8, contact_record_size = 16;
+    static constexpr std::size_t header_size = 9, contact_record_size = 16;
     std::vector<int>                                       record_counts, record_offsets;
     std::vector<std::tuple<int, double, std::size_t>>      order;
     /** The own slave nodes; the own nodes with a spring (in contact) and
