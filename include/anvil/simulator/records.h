@@ -37,7 +37,9 @@ namespace anvil
     double damping       = 0;
     /** Energy taken out of the analysis with the bodies a stage removes
         ('Inactive bodies': their kinetic energy, and the energy of their
-        contact springs, when they were removed). */
+        contact springs, when they were removed), and the energy of the
+        contact springs an erosion took away (+) or made (-), which no
+        motion did work on (Contact::ContactResult::topology_energy). */
     double removed       = 0;
     /** The energy that refinement and coarsening during the run took out
         of the motion and the stress they moved onto the new elements
