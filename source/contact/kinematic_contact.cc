@@ -227,14 +227,13 @@ namespace anvil::Contact
   void KinematicContact::deactivate_elements(const std::vector<unsigned long> &ids)
   {
     for (auto &surf : surface)
-      {
-        for (unsigned int k = 0; k < surf.segments.size(); ++k)
-          if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
-            surf.active[k] = 0, surf.dead[k] = 1;
-        for (unsigned int k = 0; k < surf.segments.size(); ++k)
-          if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
-            surf.active[k] = 1;
-      }
+      for (unsigned int k = 0; k < surf.segments.size(); ++k)
+        {
+          const auto [active, dead] =
+            segment_after_erosion(surf.element[k], surf.neighbour[k], ids, surf.active[k], surf.dead[k]);
+          surf.active[k] = active;
+          surf.dead[k]   = dead;
+        }
   }
 
 

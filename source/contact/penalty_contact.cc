@@ -606,13 +606,12 @@ namespace anvil::Contact
           surf.changed.assign(surf.segments.size(), 0);
         for (unsigned int k = 0; k < surf.segments.size(); ++k)
           {
-            const bool before = surf.active[k];
-            if (std::binary_search(ids.begin(), ids.end(), surf.element[k]))
-              surf.active[k] = false, surf.dead[k] = true;
-            else if (!surf.dead[k] && std::binary_search(ids.begin(), ids.end(), surf.neighbour[k]))
-              surf.active[k] = true;
-            if (surf.active[k] != before)
+            const auto [active, dead] =
+              segment_after_erosion(surf.element[k], surf.neighbour[k], ids, surf.active[k], surf.dead[k]);
+            if (active != surf.active[k])
               surf.changed[k] = 1, any = true;
+            surf.active[k] = active;
+            surf.dead[k]   = dead;
           }
       }
     if (!any)

@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <functional>
 #include <map>
 #include <memory>
@@ -309,6 +310,26 @@ namespace anvil::Contact
     on_first.resize(dofs.size());
     for (unsigned int i = 0; i < dofs.size(); ++i)
       on_first[i] = dof_on_first[dofs[i]];
+  }
+
+
+  /** Whether a segment takes part, and whether its own element has eroded,
+      after the elements @p ids (sorted, scene-wide) erode: an eroded
+      element's faces leave for good; an interior face of an eroding body
+      (SegmentDescription::neighbour) joins once the element across has
+      eroded and its own lives (eroding contact). Every algorithm's
+      deactivate_elements() applies this one rule. */
+  inline std::pair<bool, bool> segment_after_erosion(const unsigned long               element,
+                                                     const unsigned long               neighbour,
+                                                     const std::vector<unsigned long> &ids,
+                                                     const bool                        active,
+                                                     const bool                        dead)
+  {
+    if (std::binary_search(ids.begin(), ids.end(), element))
+      return {false, true};
+    if (!dead && std::binary_search(ids.begin(), ids.end(), neighbour))
+      return {true, false};
+    return {active, dead};
   }
 
 
