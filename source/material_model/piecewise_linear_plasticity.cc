@@ -121,7 +121,7 @@ namespace anvil::MaterialModel
                       "After the last point: 'extrapolate' continues the last "
                       "segment's slope (LS-DYNA's *MAT_024 curves; a falling "
                       "one ends at 0), 'constant' keeps the last yield stress "
-                      "(ABAQUS's *Plastic).");
+                      "(ABAQUS's *Plastic). Units: none.");
     prm.declare_entry("Cowper-Symonds C",
                       "0",
                       Patterns::Double(0.),

@@ -614,12 +614,12 @@ namespace anvil
                           "distributing coupling to the section): a member's "
                           "deflection, which a node of crushed or spalled cover "
                           "does not follow. The stress is the probed node's "
-                          "element's either way.");
+                          "element's either way. Units: none.");
         prm.declare_entry("Section normal",
                           "z",
                           Patterns::Selection("x|y|z"),
                           "The axis normal to the section of 'Average = "
-                          "section' (a member's axis).");
+                          "section' (a member's axis). Units: none.");
         prm.leave_subsection();
       }
     for (const auto &s : stage_names)
