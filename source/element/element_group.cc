@@ -389,18 +389,82 @@ namespace anvil::Element
             xe[n][a][l] = x[idx[n][l] + a];
     }
 
+    /** rows[k][l] = s[6 l + k] for the W elements whose Voigt stresses
+        start at @p s, one after the other (a batch whose lanes are its own
+        elements): four elements' 24 values are six loads of four, put in
+        place by lane permutes and unpacks (the lanes' values one by one
+        otherwise, which the vector loads of the rows then wait for). */
+    template <unsigned int W>
+    inline void load_voigt_rows(const double *s, double (&rows)[6][W])
+    {
+      static_assert(W % 4 == 0, "lanes in fours");
+      for (unsigned int l0 = 0; l0 < W; l0 += 4)
+        {
+          const double *p = s + 6 * l0;
+          Vec4          r[6];
+          for (unsigned int i = 0; i < 6; ++i)
+            r[i] = *reinterpret_cast<const Vec4 *>(p + 4 * i);
+          // Elements a, b, c, d: u[0] = a0 a1 c0 c1, u[1] = a2 a3 c2 c3,
+          // u[2] = a4 a5 c4 c5, u[3] = b0 b1 d0 d1, u[4] = b2 b3 d2 d3,
+          // u[5] = b4 b5 d4 d5; then component k from u[k / 2], u[k / 2 + 3].
+          const Vec4 u[6] = {__builtin_shufflevector(r[0], r[3], 0, 1, 4, 5),
+                             __builtin_shufflevector(r[0], r[3], 2, 3, 6, 7),
+                             __builtin_shufflevector(r[1], r[4], 0, 1, 4, 5),
+                             __builtin_shufflevector(r[1], r[4], 2, 3, 6, 7),
+                             __builtin_shufflevector(r[2], r[5], 0, 1, 4, 5),
+                             __builtin_shufflevector(r[2], r[5], 2, 3, 6, 7)};
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              *reinterpret_cast<AlignedVec4 *>(&rows[2 * j][l0]) = __builtin_shufflevector(u[j], u[j + 3], 0, 4, 2, 6);
+              *reinterpret_cast<AlignedVec4 *>(&rows[2 * j + 1][l0]) =
+                __builtin_shufflevector(u[j], u[j + 3], 1, 5, 3, 7);
+            }
+        }
+    }
+
+    /** The inverse of load_voigt_rows(): s[6 l + k] = rows[k][l]. */
+    template <unsigned int W>
+    inline void store_voigt_rows(const double (&rows)[6][W], double *s)
+    {
+      static_assert(W % 4 == 0, "lanes in fours");
+      for (unsigned int l0 = 0; l0 < W; l0 += 4)
+        {
+          Vec4 u[6];
+          for (unsigned int j = 0; j < 3; ++j)
+            {
+              const Vec4 even = *reinterpret_cast<const AlignedVec4 *>(&rows[2 * j][l0]),
+                         odd  = *reinterpret_cast<const AlignedVec4 *>(&rows[2 * j + 1][l0]);
+              u[j]            = __builtin_shufflevector(even, odd, 0, 4, 2, 6);
+              u[j + 3]        = __builtin_shufflevector(even, odd, 1, 5, 3, 7);
+            }
+          double *p = s + 6 * l0;
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              *reinterpret_cast<Vec4 *>(p + 4 * i)       = __builtin_shufflevector(u[2 * i], u[2 * i + 1], 0, 1, 4, 5);
+              *reinterpret_cast<Vec4 *>(p + 4 * (i + 3)) = __builtin_shufflevector(u[2 * i], u[2 * i + 1], 2, 3, 6, 7);
+            }
+        }
+    }
+
     /** x^(-1/3) for x between 1e-100 and 1e100 (a volume), with no call,
         branch or division, so that a loop over lanes vectorises: a first
         guess from the bits (minus a third of the exponent, a few per cent
         off), then four of Newton's steps r <- r (4 - x r^3) / 3, each
         squaring the relative error (3e-2, 2e-3, 7e-6, 1e-10, round-off).
         cbrt(x) = x r^2 and x^(2/3) = x r then agree with std::cbrt to
-        1.0e-15 and 1.3e-15 (5 and 6 ulp; 10^7 samples over the range). */
+        1.0e-15 and 1.3e-15 (5 and 6 ulp; 10^7 samples over the range).
+        The guess is made from the upper 32 bits (the exponent and 20 bits
+        of the mantissa) as 32-bit integers: AVX2 converts those to and
+        from doubles across lanes, but not 64-bit integers (AVX-512 does),
+        and with the 64-bit guess GCC left this function's loops scalar on
+        AVX2 machines. */
     inline double inverse_cube_root(const double x)
     {
-      std::int64_t bits;
+      std::uint64_t bits;
       std::memcpy(&bits, &x, sizeof bits);
-      bits = 0x553EF0FF289DD796LL - static_cast<std::int64_t>(static_cast<double>(bits) * (1. / 3.));
+      const std::int32_t upper = static_cast<std::int32_t>(bits >> 32);
+      const std::int32_t guess = 0x553EF0FF - static_cast<std::int32_t>(static_cast<double>(upper) * (1. / 3.));
+      bits                     = static_cast<std::uint64_t>(static_cast<std::uint32_t>(guess)) << 32;
       double r;
       std::memcpy(&r, &bits, sizeof r);
       // (r (4 - x r^3) / 3 as r (4/3 - (x/3) r^3): four dependent
@@ -1649,9 +1713,13 @@ namespace anvil::Element
         inverse_batch(Jn, detn, Ji);
 
         alignas(64) double sig[6][W], old[6][W];
-        for (unsigned int l = 0; l < W; ++l)
-          for (unsigned int k = 0; k < 6; ++k)
-            old[k][l] = sig[k][l] = stresses[6 * el[l] + k];
+        if (all_live)
+          load_voigt_rows(&stresses[6 * e0], old);
+        else
+          for (unsigned int l = 0; l < W; ++l)
+            for (unsigned int k = 0; k < 6; ++k)
+              old[k][l] = stresses[6 * el[l] + k];
+        std::memcpy(sig, old, sizeof sig);
         alignas(64) double e_int[W] = {};
         alignas(64) double trD[W]   = {};
         bool               failed[W] = {};
@@ -1900,13 +1968,16 @@ namespace anvil::Element
           }
 
         // Write back and scatter the live lanes, in element order.
+        if (all_live)
+          store_voigt_rows(sig, &stresses[6 * e0]);
         for (unsigned int l = 0; l < W; ++l)
           {
             if (!live[l])
               continue;
             const unsigned int e = el[l];
-            for (unsigned int k = 0; k < 6; ++k)
-              stresses[6 * e + k] = sig[k][l];
+            if (!all_live)
+              for (unsigned int k = 0; k < 6; ++k)
+                stresses[6 * e + k] = sig[k][l];
             hourglass_energy[e] += e_hg[l];
             result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
             internal_energy[e] += e_int[l];
