@@ -3,6 +3,7 @@ output, and report every check as 'measured / expected / tolerance'."""
 
 import argparse
 import bisect
+import concurrent.futures
 import csv
 import math
 import os
@@ -91,6 +92,16 @@ def run_anvil(anvil, prm, np=1, cwd=None, extra_args=(), plots=False):
         cmd = ["mpirun", "-np", str(np), "--oversubscribe"] + cmd
     r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
     return r.returncode, r.stdout, r.stderr
+
+
+def together(*calls):
+    """Call the functions at once and return their results in order. ctest
+    runs one test at a time on a two-core machine: two single-process runs
+    of a test (or two chains of them) take one run's time this way.
+    Each call must write its own output directory."""
+    with concurrent.futures.ThreadPoolExecutor(len(calls)) as pool:
+        futures = [pool.submit(call) for call in calls]
+        return [f.result() for f in futures]
 
 
 def build_plugin(checker, args, example, library):

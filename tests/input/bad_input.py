@@ -8,6 +8,7 @@ for the inverted element the time, step, element and position.
 """
 import os
 import subprocess
+from concurrent.futures import ThreadPoolExecutor
 from anvil_test import Checker, arguments, run_anvil, write_scene
 
 args = arguments()
@@ -81,9 +82,11 @@ cases += [
   end"""), 2,
      ["imperfection_elastic.prm", "Imperfection", "concrete damaged plasticity"]),
 ]
-for name, fields, status, words in cases:
-    prm = write_scene(os.path.join(args.work_dir, name + ".prm"), text=block.format(**fields))
-    code, out, err = run_anvil(args.anvil, prm, cwd=args.work_dir)
+# (Two cases at a time, one a core; checked in order.)
+with ThreadPoolExecutor(max_workers=2) as pool:
+    runs = list(pool.map(lambda case: run_anvil(args.anvil, write_scene(
+        os.path.join(args.work_dir, case[0] + ".prm"), text=block.format(**case[1])), cwd=args.work_dir), cases))
+for (name, fields, status, words), (code, out, err) in zip(cases, runs):
     lines = [l for l in err.splitlines() if l.strip()]
     print(f"    {name}: {lines[-1] if lines else '(no message)'}")
     c.check_true(f"{name}: exit status {status}", code == status, f"got {code}")

@@ -28,6 +28,7 @@ added with --set); the energy balance below 1 %; each unsupported keyword
 or option gives exactly one error line naming it and exit 2.
 """
 import os
+from concurrent.futures import ThreadPoolExecutor
 from anvil_test import Checker, arguments, run_anvil
 
 args = arguments()
@@ -279,19 +280,24 @@ def energy(name):
 
 with open(os.path.join(w, "lsdyna_scene.prm"), "w") as f:
     f.write(lsdyna_scene)
-code, out, err = run_anvil(args.anvil, "lsdyna_scene.prm", cwd=w)
+styles = ("fixed", "free", "long")
+for style in styles:
+    for name, text in keyword_deck(style).items():
+        with open(os.path.join(w, name), "w") as f:
+            f.write(text)
+# (The scene and the three decks two at a time, one a core.)
+with ThreadPoolExecutor(max_workers=2) as pool:
+    runs = list(pool.map(lambda file: run_anvil(args.anvil, file, cwd=w, extra_args=(
+        () if file.endswith(".prm") else ("--set", "Simulation/Print wall times=false"))),
+        ["lsdyna_scene.prm"] + [f"deck_{style}.k" for style in styles]))
+code, out, err = runs[0]
 if not c.check_true("the equivalent scene runs", code == 0, err.strip()[-300:]):
     c.finish()
 reference = energy("lsdyna_scene")
 balance = max(abs(float(r.split(",")[-1])) for r in reference.splitlines()[1:])
 c.check_below("the scene's largest energy balance error", balance, 0.01)
 
-for style in ("fixed", "free", "long"):
-    for name, text in keyword_deck(style).items():
-        with open(os.path.join(w, name), "w") as f:
-            f.write(text)
-    code, out, err = run_anvil(args.anvil, f"deck_{style}.k", cwd=w,
-                               extra_args=("--set", "Simulation/Print wall times=false"))
+for style, (code, out, err) in zip(styles, runs[1:]):
     if not c.check_true(f"{style} format: anvil deck_{style}.k exits 0", code == 0, err.strip()[-300:]):
         continue
     c.check_true(f"{style} format: the energy history equals the scene's, character for character",

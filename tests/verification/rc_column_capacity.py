@@ -17,7 +17,7 @@
 """
 import os
 import subprocess
-from anvil_test import Checker, arguments, read_csv
+from anvil_test import Checker, arguments, read_csv, together
 import concrete_reference as ref
 
 args = arguments()
@@ -37,8 +37,11 @@ def summary(name):
     return dict(zip(s["quantity"], s["value"]))
 
 
-# Intact.
-code, err = run(os.path.join(scenes, "rc_column_axial_capacity_coarse.prm"))
+# Intact; beside it (one run a core) the same push to its end time, below.
+(code, err), (code_whole, _) = together(
+    lambda: run(os.path.join(scenes, "rc_column_axial_capacity_coarse.prm")),
+    lambda: run(os.path.join(scenes, "rc_column_axial_capacity_coarse.prm"), "--set", "Simulation/End capacity drop=0",
+                "--set", "Simulation/Name=whole_push"))
 c.check_true("intact push runs", code == 0, err)
 p_intact = summary("rc_column_axial_capacity_coarse")["axial_capacity_N"]
 fc, fy, b, d_bar = 45.4e6, 335e6, 0.12, 0.008
@@ -62,8 +65,7 @@ c.check_below(f"quasi-static: kinetic / internal energy at the peak (t = {peak_t
 # scene): the push stops at the first history row 2 ms after the reaction
 # fell below half its peak and stayed there. The same push to its end time
 # gives the same rows up to there and the same P_intact, bit for bit.
-code, err = run(os.path.join(scenes, "rc_column_axial_capacity_coarse.prm"), "--set", "Simulation/End capacity drop=0",
-                "--set", "Simulation/Name=whole_push")
+code = code_whole
 w = read_csv(os.path.join(work, "output", "whole_push", "reactions.csv"))
 stopped = summary("rc_column_axial_capacity_coarse")
 magnitude, times = [abs(f) for f in r["top_fz"]], r["time"]
@@ -97,14 +99,32 @@ prm_value = float([l.split("=")[1] for l in open(os.path.join(scenes, "rc_column
                    if l.strip().startswith("set Intact axial capacity")][0])
 c.check("'Intact axial capacity' of the residual scene is this P_intact", prm_value, p_intact, 0.005, relative=True)
 
-# Impact, then the residual push as a stage from its checkpoint.
-code, err = run(os.path.join(scenes, "rc_column_impact_coarse.prm"), "--set", "Simulation/Checkpoint at end=true",
-                "--set", "Simulation/Output interval=0")
+# Impact, then the residual push as a stage from its checkpoint; beside
+# them (one chain a core) the split run of the last check.
+every = ["--set", "Simulation/History interval=0", "--set", "Simulation/Output interval=0",
+         "--set", "Simulation/End kinetic energy fraction=0"]
+impact = os.path.join(scenes, "rc_column_impact_coarse.prm")
+
+
+def impact_then_residual():
+    first = run(impact, "--set", "Simulation/Checkpoint at end=true", "--set", "Simulation/Output interval=0")
+    checkpoint = os.path.join(work, "output", "rc_column_impact_coarse", "checkpoint")
+    if first[0] != 0 or not os.path.exists(os.path.join(checkpoint, "info")):
+        return first, (1, "no checkpoint")
+    return first, run("--resume-from", checkpoint, os.path.join(scenes, "rc_column_residual_capacity_coarse.prm"))
+
+
+def split_run():
+    first = run(impact, *every, "--set", "Simulation/End time=0.012", "--set", "Simulation/Name=unsplit",
+                "--set", "Simulation/Checkpoint interval=0.006")
+    return first, run("--resume-from", os.path.join(work, "output", "unsplit", "checkpoint"), impact, *every,
+                      "--set", "Simulation/End time=0.012", "--set", "Simulation/Name=second")
+
+
+((code, err), (code_res, err_res)), ((code1, _), (code2, err2)) = together(impact_then_residual, split_run)
 c.check_true("impact stage runs and leaves a checkpoint", code == 0 and os.path.exists(
     os.path.join(work, "output", "rc_column_impact_coarse", "checkpoint", "info")), err)
-code, err = run("--resume-from", os.path.join(work, "output", "rc_column_impact_coarse", "checkpoint"),
-                os.path.join(scenes, "rc_column_residual_capacity_coarse.prm"))
-c.check_true("residual push runs as a stage from the impact's checkpoint", code == 0, err)
+c.check_true("residual push runs as a stage from the impact's checkpoint", code_res == 0, err_res)
 s = summary("rc_column_residual_capacity_coarse")
 p_res = s["axial_capacity_N"]
 c.check_true("P_residual below P_intact", p_res < p_intact, f"{p_res / 1e3:.1f} kN against {p_intact / 1e3:.1f} kN")
@@ -118,14 +138,8 @@ print(f"  D = {D:.3f} ({level}; Shi, Hao and Li 2008: < 0.2 low, 0.2-0.5 medium,
 # unsplit run byte for byte. (A stage started from the end of a run does
 # too where the end falls on a step of the unsplit run:
 # tests/verification/stages.py.)
-every = ["--set", "Simulation/History interval=0", "--set", "Simulation/Output interval=0",
-         "--set", "Simulation/End kinetic energy fraction=0"]
-impact = os.path.join(scenes, "rc_column_impact_coarse.prm")
-code1, _ = run(impact, *every, "--set", "Simulation/End time=0.012", "--set", "Simulation/Name=unsplit",
-               "--set", "Simulation/Checkpoint interval=0.006")
-code2, err = run("--resume-from", os.path.join(work, "output", "unsplit", "checkpoint"), impact, *every,
-                 "--set", "Simulation/End time=0.012", "--set", "Simulation/Name=second")
-c.check_true("split at a step boundary runs", code1 == 0 and code2 == 0, err)
+# (Run above, beside the impact and the residual push.)
+c.check_true("split at a step boundary runs", code1 == 0 and code2 == 0, err2)
 differ, compared = [], 0
 for name in ("energy.csv", "momentum.csv", "probe_impact_point.csv", "contact_impact.csv", "rigid_hammer.csv",
              "reactions.csv", "rebar_longitudinal.csv"):
