@@ -1968,16 +1968,46 @@ namespace anvil::Element
           }
 
         // Write back and scatter the live lanes, in element order.
-        if (all_live)
-          store_voigt_rows(sig, &stresses[6 * e0]);
+        bool any_failed = false;
+        for (unsigned int l = 0; l < W; ++l)
+          any_failed |= failed[l];
+        if (all_live && !any_failed)
+          {
+            // A batch of its own elements, none failed (nearly every one):
+            // the same as the lane-by-lane loop below, with the per-element
+            // arrays written as rows and the sums over the elements in
+            // element order, as there.
+            store_voigt_rows(sig, &stresses[6 * e0]);
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                hourglass_energy[e0 + l] += e_hg[l];
+                internal_energy[e0 + l] += e_int[l];
+                min_dt2 = std::min(min_dt2, dt2[l]);
+              }
+            if (with_bulk_viscosity)
+              std::memcpy(&bulk_pressure[e0], qv, sizeof qv);
+            alignas(64) double w[W];
+            std::memcpy(w, &energy_weight[e0], sizeof w);
+            for (unsigned int l = 0; l < W; ++l)
+              result.hourglass_energy_increment += w[l] * e_hg[l];
+            for (unsigned int l = 0; l < W; ++l)
+              result.internal_energy_increment += w[l] * e_int[l];
+            if (with_bulk_viscosity)
+              for (unsigned int l = 0; l < W; ++l)
+                result.viscous_energy_increment += w[l] * e_visc[l];
+            for (unsigned int l = 0; l < W; ++l)
+              for (unsigned int n = 0; n < 8; ++n)
+                for (unsigned int a = 0; a < 3; ++a)
+                  force[idx[n][l] + a] += fe[n][a][l];
+            continue;
+          }
         for (unsigned int l = 0; l < W; ++l)
           {
             if (!live[l])
               continue;
             const unsigned int e = el[l];
-            if (!all_live)
-              for (unsigned int k = 0; k < 6; ++k)
-                stresses[6 * e + k] = sig[k][l];
+            for (unsigned int k = 0; k < 6; ++k)
+              stresses[6 * e + k] = sig[k][l];
             hourglass_energy[e] += e_hg[l];
             result.hourglass_energy_increment += energy_weight[e] * e_hg[l];
             internal_energy[e] += e_int[l];
