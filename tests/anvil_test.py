@@ -94,12 +94,12 @@ def run_anvil(anvil, prm, np=1, cwd=None, extra_args=(), plots=False):
     return r.returncode, r.stdout, r.stderr
 
 
-def together(*calls):
-    """Call the functions at once and return their results in order. ctest
-    runs one test at a time on a two-core machine: two single-process runs
-    of a test (or two chains of them) take one run's time this way.
-    Each call must write its own output directory."""
-    with concurrent.futures.ThreadPoolExecutor(len(calls)) as pool:
+def together(*calls, at_once=None):
+    """Call the functions at once (at most 'at_once' at a time) and return
+    their results in order. ctest runs one test at a time on a two-core
+    machine: two single-process runs of a test (or two chains of them) take
+    one run's time this way. Each call must write its own output directory."""
+    with concurrent.futures.ThreadPoolExecutor(at_once or len(calls)) as pool:
         futures = [pool.submit(call) for call in calls]
         return [f.result() for f in futures]
 

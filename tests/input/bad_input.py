@@ -8,8 +8,7 @@ for the inverted element the time, step, element and position.
 """
 import os
 import subprocess
-from concurrent.futures import ThreadPoolExecutor
-from anvil_test import Checker, arguments, run_anvil, write_scene
+from anvil_test import Checker, arguments, run_anvil, write_scene, together
 
 args = arguments()
 c = Checker("bad input")
@@ -83,9 +82,9 @@ cases += [
      ["imperfection_elastic.prm", "Imperfection", "concrete damaged plasticity"]),
 ]
 # (Two cases at a time, one a core; checked in order.)
-with ThreadPoolExecutor(max_workers=2) as pool:
-    runs = list(pool.map(lambda case: run_anvil(args.anvil, write_scene(
-        os.path.join(args.work_dir, case[0] + ".prm"), text=block.format(**case[1])), cwd=args.work_dir), cases))
+runs = together(*[lambda case=case: run_anvil(args.anvil, write_scene(
+    os.path.join(args.work_dir, case[0] + ".prm"), text=block.format(**case[1])), cwd=args.work_dir)
+    for case in cases], at_once=2)
 for (name, fields, status, words), (code, out, err) in zip(cases, runs):
     lines = [l for l in err.splitlines() if l.strip()]
     print(f"    {name}: {lines[-1] if lines else '(no message)'}")

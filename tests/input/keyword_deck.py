@@ -28,8 +28,7 @@ added with --set); the energy balance below 1 %; each unsupported keyword
 or option gives exactly one error line naming it and exit 2.
 """
 import os
-from concurrent.futures import ThreadPoolExecutor
-from anvil_test import Checker, arguments, run_anvil
+from anvil_test import Checker, arguments, run_anvil, together
 
 args = arguments()
 c = Checker("keyword and ABAQUS decks run as their equivalent scenes")
@@ -286,10 +285,9 @@ for style in styles:
         with open(os.path.join(w, name), "w") as f:
             f.write(text)
 # (The scene and the three decks two at a time, one a core.)
-with ThreadPoolExecutor(max_workers=2) as pool:
-    runs = list(pool.map(lambda file: run_anvil(args.anvil, file, cwd=w, extra_args=(
-        () if file.endswith(".prm") else ("--set", "Simulation/Print wall times=false"))),
-        ["lsdyna_scene.prm"] + [f"deck_{style}.k" for style in styles]))
+runs = together(*[lambda file=file: run_anvil(args.anvil, file, cwd=w, extra_args=(
+    () if file.endswith(".prm") else ("--set", "Simulation/Print wall times=false")))
+    for file in ["lsdyna_scene.prm"] + [f"deck_{style}.k" for style in styles]], at_once=2)
 code, out, err = runs[0]
 if not c.check_true("the equivalent scene runs", code == 0, err.strip()[-300:]):
     c.finish()
