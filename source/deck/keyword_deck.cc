@@ -588,8 +588,18 @@ namespace anvil::Deck
       double               friction = 0;
       std::vector<long>    pids;
       const Keyword       *keyword;
+      /** The penalty's scale factor RWPNAL x RWKSF; 0: the nodes are
+          constrained (kinematic contact). */
+      double               penalty = 0;
     };
     std::vector<Wall> wall_list;
+    // *CONTROL_CONTACT's RWPNAL: 0 (the default), the wall constrains the
+    // nodes of deformable parts and leaves rigid parts alone (Anvil's
+    // kinematic contact); > 0, a penalty of that scale factor on every node;
+    // < 0, the penalty on the nodes of rigid parts only.
+    double rwpnal = 0;
+    if (control_contact && !control_contact->cards.empty())
+      rwpnal = real(control_contact->fields(0)[1], control_contact->cards[0], "RWPNAL", 0.);
     double            size = 0;
     {
       dealii::Point<3> lo = mesh.vertices[0], hi = mesh.vertices[0];
@@ -631,18 +641,35 @@ namespace anvil::Deck
           not_default(kw, "FRIC (allowed: 0 <= FRIC < 1, a Coulomb coefficient)", b[6]);
         if (real(b[7], kw.cards[1], "WVEL") != 0)
           not_default(kw, "WVEL", b[7]);
+        const double rwksf = real(a[6], kw.cards[0], "RWKSF", 1.);
+        if (!(rwksf > 0))
+          not_default(kw, "RWKSF (allowed: > 0, a scale of the penalty)", a[6]);
+        std::vector<long> touched;
         if (nsid == 0)
           for (const auto &[pid, p] : parts)
-            {
-              if (!p.rigid)
-                wall.pids.push_back(pid);
-            }
+            touched.push_back(pid);
         else
-          wall.pids = parts_of_nodes(node_set(nsid, kw));
+          touched = parts_of_nodes(node_set(nsid, kw));
+        // Anvil has no contact between two rigid bodies: LS-DYNA's penalty
+        // on the nodes of rigid parts (RWPNAL other than 0) is refused where
+        // the set holds such a part; with RWPNAL = 0 LS-DYNA leaves them
+        // alone, as Anvil does.
+        for (const long pid : touched)
+          if (!parts.at(pid).rigid)
+            wall.pids.push_back(pid);
+          else if (rwpnal != 0 && nsid != 0)
+            unsupported(kw, "the node set holds rigid part " + std::to_string(pid) +
+                              ", which a rigid wall meets by penalty with *CONTROL_CONTACT's RWPNAL = " +
+                              control_contact->fields(0)[1] +
+                              " (supported: RWPNAL = 0, which leaves rigid parts alone, or a set without rigid "
+                              "parts)");
+        if (rwpnal > 0)
+          wall.penalty = rwpnal * rwksf;
+        else if (rwksf != 1)
+          w.differ("*RIGIDWALL_PLANAR: RWKSF scales a penalty, and this wall constrains the nodes "
+                   "(*CONTROL_CONTACT RWPNAL <= 0): not used");
         if (nsid != 0)
           w.differ("*RIGIDWALL_PLANAR: the wall meets every node of the parts its set touches");
-        w.differ("*RIGIDWALL_PLANAR: a penalty contact with an exact rigid plane (factor 1), where LS-DYNA "
-                 "constrains the nodes (RWPNAL = 0)");
         wall_list.push_back(wall);
       }
 
@@ -1251,8 +1278,18 @@ namespace anvil::Deck
           w.enter("Contact pair " + wall.name + "_" + parts[pid].body);
           w.set("First body", wall.name);
           w.set("Second body", parts[pid].body);
-          w.set("Algorithm", "penalty");
-          w.set("Penalty scale factor", 1.0);
+          if (wall.penalty > 0)
+            {
+              w.comment("*CONTROL_CONTACT RWPNAL > 0: a penalty of scale factor RWPNAL x RWKSF (seed Eq. (59))");
+              w.set("Algorithm", "penalty");
+              w.set("Penalty scale factor", wall.penalty);
+            }
+          else
+            {
+              w.comment("RWPNAL = 0: the wall constrains the nodes (kinematic contact: no springs, the "
+                        "elements' time step)");
+              w.set("Algorithm", "kinematic");
+            }
           w.set("Static friction coefficient", wall.friction);
           w.set("Dynamic friction coefficient", wall.friction);
           w.leave();

@@ -607,6 +607,75 @@ c.check_true("a deck with *CASE and no --case: exit 2 and one line", code == 2 a
 code, out, err = run_anvil(args.anvil, "cases.k", cwd=w, extra_args=("--check", "--case", "101"))
 c.check_true("... with --case 101 it is valid", code == 0, err.strip()[:300])
 
+# @sect{Rigid walls: constraint or penalty (*CONTROL_CONTACT's RWPNAL)}
+# A brick and a rigid brick beside it, both in the wall's node set.
+WALL_DECK = """*KEYWORD
+*CONTROL_TERMINATION
+1.0e-4
+{control}*PART
+brick
+1,1,1
+*PART
+block
+2,1,2
+*SECTION_SOLID
+1,1
+*MAT_ELASTIC
+1,7850.0,2.1e11,0.3
+*MAT_RIGID
+2,7850.0,2.1e11,0.3
+*SET_NODE_LIST
+7
+1,2,5,6,9,10
+*RIGIDWALL_PLANAR
+7,0,0,0.0,0.0,1.0e20,{rwksf}
+0.0,-1.0,0.0,0.0,0.0,0.0,0.0
+*NODE
+1,0.0,0.0,0.0
+2,0.1,0.0,0.0
+3,0.1,0.1,0.0
+4,0.0,0.1,0.0
+5,0.0,0.0,0.1
+6,0.1,0.0,0.1
+7,0.1,0.1,0.1
+8,0.0,0.1,0.1
+9,0.2,0.0,0.0
+10,0.2,0.0,0.1
+11,0.2,0.1,0.0
+12,0.2,0.1,0.1
+*ELEMENT_SOLID
+1,1,1,2,3,4,5,6,7,8
+2,2,2,9,11,3,6,10,12,7
+*END
+"""
+walls = {
+    "RWPNAL = 0 (default)": ("", "1.0"),
+    "RWPNAL = 0.5, RWKSF = 2": ("*CONTROL_CONTACT\n0.1,0.5\n", "2.0"),
+}
+for what, (control, rwksf) in walls.items():
+    with open(os.path.join(w, "wall.k"), "w") as f:
+        f.write(WALL_DECK.format(control=control, rwksf=rwksf))
+    code, out, err = run_anvil(args.anvil, "wall.k", cwd=w, extra_args=("--translate",))
+    pairs = [l.split()[-1] for l in out.splitlines() if l.startswith("subsection Contact pair")]
+    if control:
+        # The rigid block in the set: LS-DYNA's penalty would meet its nodes,
+        # and Anvil has no contact between two rigid bodies.
+        lines = err.strip().splitlines()
+        c.check_true(f"{what}, a rigid part in the wall's set: exit 2 and one line naming it",
+                     code == 2 and len(lines) == 1 and "RIGIDWALL_PLANAR" in lines[0] and "rigid part 2" in lines[0],
+                     err.strip()[:300])
+        with open(os.path.join(w, "wall.k"), "w") as f:
+            f.write(WALL_DECK.format(control=control, rwksf=rwksf).replace("1,2,5,6,9,10", "1,4,5,8"))
+        code, out, err = run_anvil(args.anvil, "wall.k", cwd=w, extra_args=("--translate",))
+        pairs = [l.split()[-1] for l in out.splitlines() if l.startswith("subsection Contact pair")]
+        c.check_true(f"{what}: one penalty pair with the brick, factor RWPNAL x RWKSF = 1",
+                     code == 0 and pairs == ["wall1_brick"] and "set Algorithm = penalty" in out and
+                     "set Penalty scale factor = 1\n" in out, (out + err).strip()[-400:])
+    else:
+        c.check_true(f"{what}: one kinematic pair with the brick, the rigid block left alone",
+                     code == 0 and pairs == ["wall1_brick"] and "set Algorithm = kinematic" in out and
+                     "Penalty scale factor" not in out, (out + err).strip()[-400:])
+
 abaqus_errors = {
     "*Concrete Damaged Plasticity": ("*Density\n2400.0,\n", "*Density\n2400.0,\n*Concrete Damaged Plasticity\n"),
     "three rows of *Plastic, hardening=KINEMATIC": ("*Plastic\n3.5e8, 0.\n3.6e8, 0.5\n",

@@ -13,10 +13,12 @@ they do not.
   LS-PrePost mesh in the ten-nodes format through *INCLUDE, a box-selected
   *RIGIDWALL_PLANAR, *INITIAL_VELOCITY_GENERATION in a *DEFINE_COORDINATE_
   SYSTEM; t-mm-s): its source states no result, so: the energy balance
-  below 1 %; the bar stops at the wall (its end no further than 2 % of an
-  element beyond the plane); the wall takes the bar's momentum (the bar's
-  kinetic energy at the end below 1 % of the start); np = 2 writes np = 1's
-  probe history.
+  below 1 %; the bar stops at the wall (RWPNAL = 0, the nodes constrained:
+  its end not beyond the plane, and no more steps than the elements alone
+  need); the wall takes the bar's momentum (the bar's kinetic energy at the
+  end below 1 % of the start); np = 2 writes np = 1's probe history. With
+  *CONTROL_CONTACT's RWPNAL = 1 added, a penalty wall: its end no further
+  than 2 % of an element beyond the plane, the penetration reported.
 - The LSTC projectile and plate (projectile.k, *CASE blocks, *INCLUDE,
   g-cm-us; its contact cards are commented out, so the projectile passes
   through the plate): case 101 translates the projectile rigidly, its
@@ -67,7 +69,10 @@ if ok:
     c.check_below("Taylor.inp: largest energy balance error", max(abs(v) for v in e["balance_error"]), 0.01)
     c.check_true("Taylor.inp: the warning says where Anvil differs (C3D8 as one-point elements)", "C3D8" in out)
 
-# pydyna's LS-DYNA Taylor bar.
+# pydyna's LS-DYNA Taylor bar. Its wall constrains the nodes (RWPNAL = 0,
+# LS-DYNA's default): Anvil's kinematic contact, which never lowers the
+# step. The same deck with *CONTROL_CONTACT's RWPNAL = 1 (written here
+# beside a copy of the deck) meets the wall by a penalty instead.
 energies = []
 for np_ in (1, 2):
     ok, out, d = run("pydyna-taylor/input.k", np_=np_, sub=f"pydyna_np{np_}",
@@ -84,21 +89,54 @@ for np_ in (1, 2):
         bar = b["body"].index("bar")
         print(f"  Anvil: the bar's length at the end {b['ymax'][bar] - b['ymin'][bar]:.2f} mm (30 mm at the start; "
               f"its source states no result)")
-        # Elements are about 1 mm long along the bar.
-        c.check_below("input.k: the bar's end beyond the wall at y = 40.1 mm [mm]", b["ymax"][bar] - 40.1, 0.02)
-        # The contact's own error, in summary.csv and a line at the end:
-        # the run's deepest penetration is at least any history row's.
+        # The constraint leaves no node behind the plane y = 40.1 mm
+        # (round-off of mm coordinates: 1e-9 of them).
+        c.check_below("input.k (RWPNAL = 0): the bar's end beyond the wall at y = 40.1 mm [mm]",
+                      b["ymax"][bar] - 40.1, 40.1e-9)
         summary = dict(l.strip().split(",", 1) for l in open(os.path.join(d, "summary.csv")) if "," in l)
-        history = read_csv(os.path.join(d, "contact_wall1_bar.csv"))
-        deepest = float(summary.get("contact_wall1_bar_max_penetration", "nan"))
-        c.check_true("input.k: summary.csv's deepest penetration is the run's (>= every history row's, > 0)",
-                     deepest >= max(history["max_penetration"]) > 0,
-                     f"{deepest} against {max(history['max_penetration'])}")
-        c.check_true("input.k: the run's last lines give the penetration and the springs' energy",
-                     "contact pair 'wall1_bar': deepest penetration" in out and "% of the initial energy" in out)
+        steps, alone = float(summary["steps"]), float(summary["steps_elements_only"])
+        print(f"  steps {steps:.0f}, the elements alone {alone:.1f}")
+        c.check_below("input.k (RWPNAL = 0): steps over those the elements alone need", steps / alone, 1.0 + 1e-3)
+        c.check_below("input.k (RWPNAL = 0): the deepest penetration left at a step's end (summary.csv) [mm]",
+                      float(summary["contact_wall1_bar_max_penetration"]), 40.1e-9)
+        c.check_true("input.k: the run's last line names the kinematic wall and its penetration",
+                     "contact pair 'wall1_bar' (kinematic): deepest penetration left at a step's end" in out)
 if len(energies) == 2:
     c.check_true("input.k: np = 2 writes the probe history of np = 1 (a probe added with --set; bitwise)",
                  energies[0] == energies[1])
+
+deck = open(os.path.join(decks, "pydyna-taylor", "input.k")).read()
+at = deck.upper().index("*RIGIDWALL_PLANAR")
+penalty_dir = os.path.join(args.work_dir, "pydyna_rwpnal")
+os.makedirs(penalty_dir, exist_ok=True)
+for f in os.listdir(os.path.join(decks, "pydyna-taylor")):
+    if f != "input.k" and f.endswith(".k"):
+        dst = os.path.join(penalty_dir, f)
+        if not os.path.exists(dst):
+            os.symlink(os.path.join(decks, "pydyna-taylor", f), dst)
+with open(os.path.join(penalty_dir, "input.k"), "w") as f:
+    f.write(deck[:at] + "*CONTROL_CONTACT\n$   slsfac    rwpnal\n       0.1       1.0\n" + deck[at:])
+code, out, err = run_anvil(args.anvil, "input.k", cwd=penalty_dir, extra_args=quiet)
+if c.check_true("input.k with RWPNAL = 1 exits 0", code == 0, err.strip()[-300:]):
+    d = os.path.join(penalty_dir, "output", "input")
+    e = read_csv(os.path.join(d, "energy.csv"))
+    c.check_below("input.k (RWPNAL = 1): largest energy balance error", max(abs(v) for v in e["balance_error"]), 0.01)
+    b = read_csv(os.path.join(d, "bodies.csv"))
+    bar = b["body"].index("bar")
+    # Elements are about 1 mm long along the bar.
+    c.check_below("input.k (RWPNAL = 1): the bar's end beyond the wall at y = 40.1 mm [mm]", b["ymax"][bar] - 40.1,
+                  0.02)
+    # The contact's own error, in summary.csv and a line at the end:
+    # the run's deepest penetration is at least any history row's.
+    summary = dict(l.strip().split(",", 1) for l in open(os.path.join(d, "summary.csv")) if "," in l)
+    history = read_csv(os.path.join(d, "contact_wall1_bar.csv"))
+    deepest = float(summary.get("contact_wall1_bar_max_penetration", "nan"))
+    c.check_true("input.k (RWPNAL = 1): summary.csv's deepest penetration is the run's (>= every history row's, > 0)",
+                 deepest >= max(history["max_penetration"]) > 0,
+                 f"{deepest} against {max(history['max_penetration'])}")
+    c.check_true("input.k (RWPNAL = 1): the run's last lines give the penetration and the springs' energy",
+                 "contact pair 'wall1_bar': deepest penetration" in out and "% of the initial energy" in out)
+    print(f"  RWPNAL = 1: steps {summary['steps']}, the elements alone {float(summary['steps_elements_only']):.1f}")
 
 # The LSTC projectile, both cases.
 ok, out, d = run("lstc-projectile-plate/projectile.k", extra=("--case", "101"), sub="case101")
