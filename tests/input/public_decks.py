@@ -96,7 +96,9 @@ for np_ in (1, 2):
         summary = dict(l.strip().split(",", 1) for l in open(os.path.join(d, "summary.csv")) if "," in l)
         steps, alone = float(summary["steps"]), float(summary["steps_elements_only"])
         print(f"  steps {steps:.0f}, the elements alone {alone:.1f}")
-        c.check_below("input.k (RWPNAL = 0): steps over those the elements alone need", steps / alone, 1.0 + 1e-3)
+        # (The step is held while it stays within 1 % of the stable one:
+        # time_integration.cc. A penalty wall at factor 1 takes 1.064.)
+        c.check_below("input.k (RWPNAL = 0): steps over those the elements alone need", steps / alone, 1.01)
         c.check_below("input.k (RWPNAL = 0): the deepest penetration left at a step's end (summary.csv) [mm]",
                       float(summary["contact_wall1_bar_max_penetration"]), 40.1e-9)
         c.check_true("input.k: the run's last line names the kinematic wall and its penetration",
