@@ -191,7 +191,7 @@ namespace anvil::Deck
                 if (integer(x, kw.cards[c], "*SET_PART PID") != 0)
                   list.push_back(integer(x, kw.cards[c], "*SET_PART PID"));
           }
-        else if (n == "INITIAL_VELOCITY" || n == "INITIAL_VELOCITY_GENERATION")
+        else if (n == "INITIAL_VELOCITY" || n == "INITIAL_VELOCITY_GENERATION" || n == "INITIAL_VELOCITY_NODE")
           velocities.push_back(&kw);
         else if (n == "BOUNDARY_SPC_SET")
           spcs.push_back(&kw);
@@ -322,6 +322,7 @@ namespace anvil::Deck
       const dealii::Tensor<1, 3> e2 = dealii::cross_product_3d(e3, e1);
       return v[0] * e1 + v[1] * e2 + v[2] * e3;
     };
+    unsigned int n_node_velocities = 0;
     for (const Keyword *kwp : velocities)
       {
         const Keyword &kw = *kwp;
@@ -330,6 +331,39 @@ namespace anvil::Deck
           unsupported(kw, "a card is missing");
         std::vector<long>    pids;
         dealii::Tensor<1, 3> v;
+        if (kw.name == "INITIAL_VELOCITY_NODE")
+          {
+            // NID VX VY VZ VXR VYR VZR ICID, a card a node: the nodes of
+            // each velocity (the mesh reader's node sets) must hold whole
+            // parts, which take that velocity.
+            const auto groups = KeywordFile::node_velocity_groups(kw);
+            std::map<long, std::vector<unsigned int>> groups_of_part;
+            for (unsigned int g = 0; g < groups.size(); ++g)
+              {
+                for (unsigned int d = 3; d < 6; ++d)
+                  if (groups[g].values[d] != 0)
+                    not_default(kw, "VXR/VYR/VZR (an initial rotation)", std::to_string(groups[g].values[d]));
+                for (const long pid : parts_of_nodes(mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g))))
+                  groups_of_part[pid].push_back(g);
+              }
+            for (const auto &[pid, in] : groups_of_part)
+              {
+                const unsigned int g     = in.front();
+                const auto        &nodes = mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g));
+                if (in.size() > 1 || !covers_part(nodes, pid))
+                  unsupported(kw, "the nodes of part " + std::to_string(pid) +
+                                    (in.size() > 1 ? " are given different velocities" : " are not all given a velocity") +
+                                    ": Anvil gives initial velocities to whole parts (one velocity a part)");
+                dealii::Tensor<1, 3> u;
+                for (unsigned int d = 0; d < 3; ++d)
+                  u[d] = groups[g].values[d];
+                auto &p        = part(pid, kw);
+                p.velocity     = rotate(groups[g].icid, kw, u);
+                p.has_velocity = true;
+              }
+            ++n_node_velocities;
+            continue;
+          }
         if (kw.name == "INITIAL_VELOCITY")
           {
             // NSID NSIDEX BOXID IRIGID ICID / VX VY VZ VXR VYR VZR

@@ -315,4 +315,28 @@ namespace anvil::KeywordFile
         deck.keywords.push_back(std::move(r.keyword));
     return deck;
   }
+
+
+  std::vector<NodeVelocityGroup> node_velocity_groups(const Keyword &kw)
+  {
+    std::vector<NodeVelocityGroup>                           groups;
+    std::map<std::pair<std::array<double, 6>, long>, std::size_t> index;
+    for (unsigned int c = 0; c < kw.cards.size(); ++c)
+      {
+        const Card &card = kw.cards[c];
+        if (card.text.find_first_not_of(" \t") == std::string::npos)
+          continue;
+        const auto            f = kw.fields(c);
+        std::array<double, 6> v;
+        for (unsigned int d = 0; d < 6; ++d)
+          v[d] = real(f[1 + d], card, "*" + kw.name + " " + (d < 3 ? "V" : "VR") + char('X' + d % 3));
+        const long icid = integer(f[7], card, "*" + kw.name + " ICID");
+        const auto [at, added] = index.emplace(std::make_pair(v, icid), groups.size());
+        if (added)
+          groups.push_back({v, icid, {}, {}});
+        groups[at->second].nids.push_back(integer(f[0], card, "*" + kw.name + " NID"));
+        groups[at->second].cards.push_back(&card);
+      }
+    return groups;
+  }
 } // namespace anvil::KeywordFile

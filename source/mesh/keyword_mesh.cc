@@ -4,7 +4,8 @@
  * the two-card and ten-nodes formats), parts as groups of cells, node sets
  * (*SET_NODE_LIST, _GENERATE, _GENERAL with ALL, NODE, PART and BOX),
  * segment sets as surfaces, and the nodes that *NODE's TC codes and
- * *BOUNDARY_SPC_NODE constrain, as node sets the deck translator names.
+ * *BOUNDARY_SPC_NODE constrain and those *INITIAL_VELOCITY_NODE moves, as
+ * node sets the deck translator names.
  */
 #include <anvil/mesh/keyword_file.h>
 #include <anvil/mesh/mesh_file.h>
@@ -267,6 +268,22 @@ namespace anvil::MeshFile
               constrained["SPC_NODE_" + name].insert(
                 vertex(integer(f[0], card, "*BOUNDARY_SPC_NODE NID"), card));
           }
+
+    // *INITIAL_VELOCITY_NODE: a node set per velocity (the translator
+    // gives it to the parts the set holds whole).
+    unsigned int n_node_velocities = 0;
+    for (const auto &kw : deck.keywords)
+      if (kw.name == "INITIAL_VELOCITY_NODE")
+        {
+          const auto groups = node_velocity_groups(kw);
+          for (unsigned int g = 0; g < groups.size(); ++g)
+            {
+              auto &set = constrained[node_velocity_set(n_node_velocities, g)];
+              for (std::size_t i = 0; i < groups[g].nids.size(); ++i)
+                set.insert(vertex(groups[g].nids[i], *groups[g].cards[i]));
+            }
+          ++n_node_velocities;
+        }
 
     for (const auto &[pid, cells] : part_cells)
       {

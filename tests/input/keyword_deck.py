@@ -315,6 +315,31 @@ code, out, err = run_anvil(args.anvil, "eroding.k", cwd=w, extra_args=("--set", 
 c.check_true("*CONTACT_ERODING_SURFACE_TO_SURFACE: the energy history equals the scene's, character for character",
              code == 0 and energy("eroding") == reference, err.strip()[-300:])
 
+# *INITIAL_VELOCITY_NODE (a card a node, as LS-PrePost writes it): the
+# striker's nodes at its velocity run the scene; a node left out, or given
+# another velocity, is refused (Anvil gives velocities to whole parts).
+generation = "*initial_velocity_generation\n1,2,0.0,0.0,0.0,-50.0\n\n"
+assert generation in free_deck
+striker_nodes = sorted({i for e in elements if e[1] == 1 for i in e[2]})
+node_cards = {
+    "the striker's nodes": [f"{n},0.0,0.0,-50.0\n" for n in striker_nodes],
+    "a node left out": [f"{n},0.0,0.0,-50.0\n" for n in striker_nodes[1:]],
+    "a node at another velocity": [f"{n},0.0,0.0,{-49.0 if i == 3 else -50.0}\n" for i, n in enumerate(striker_nodes)],
+}
+for what, cards in node_cards.items():
+    with open(os.path.join(w, "node_velocity.k"), "w") as f:
+        f.write(free_deck.replace(generation, "*initial_velocity_node\n" + "".join(cards)))
+    code, out, err = run_anvil(args.anvil, "node_velocity.k", cwd=w,
+                               extra_args=("--set", "Simulation/Print wall times=false"))
+    if what == "the striker's nodes":
+        c.check_true(f"*INITIAL_VELOCITY_NODE, {what}: the energy history equals the scene's, character for character",
+                     code == 0 and energy("node_velocity") == reference, err.strip()[-300:])
+    else:
+        lines = err.strip().splitlines()
+        c.check_true(f"*INITIAL_VELOCITY_NODE, {what}: exit 2 and one line naming the keyword and the part",
+                     code == 2 and len(lines) == 1 and "INITIAL_VELOCITY_NODE" in lines[0] and "part 1" in lines[0],
+                     err.strip()[:300])
+
 # The translation as a scene of its own.
 code, out, err = run_anvil(args.anvil, "deck_fixed.k", cwd=w, extra_args=("--translate",))
 with open(os.path.join(w, "translated.prm"), "w") as f:

@@ -9,6 +9,7 @@
  */
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -71,4 +72,26 @@ namespace anvil::KeywordFile
   double real(const std::string &field, const Card &card, const std::string &what, double fallback = 0);
   /** An integer field (empty: @p fallback). */
   long integer(const std::string &field, const Card &card, const std::string &what, long fallback = 0);
+
+  /** The cards of an *INITIAL_VELOCITY_NODE (NID VX VY VZ VXR VYR VZR
+      ICID) grouped by their values, in the order of each group's first
+      card: the mesh reader makes a node set of each group, the deck
+      translator gives their velocity to the parts they hold. */
+  struct NodeVelocityGroup
+  {
+    /** VX VY VZ VXR VYR VZR. */
+    std::array<double, 6> values;
+    long                  icid;
+    std::vector<long>     nids;
+    /** The card of each node. */
+    std::vector<const Card *> cards;
+  };
+  std::vector<NodeVelocityGroup> node_velocity_groups(const Keyword &kw);
+
+  /** The name of the node set of group @p g of the @p k-th
+      *INITIAL_VELOCITY_NODE of a deck (both counted from 0). */
+  inline std::string node_velocity_set(const unsigned int k, const unsigned int g)
+  {
+    return "INITIAL_VELOCITY_NODE" + std::to_string(k) + "_" + std::to_string(g);
+  }
 } // namespace anvil::KeywordFile
