@@ -212,7 +212,9 @@ namespace anvil
           if (!moved_dof.empty() && moved_dof[i])
             damped_dof[i] = 2;
       }
-    double absorbed = 0;
+    // (The sums in locals, added in the same order: the references would
+    // keep them in memory through the loop.)
+    double absorbed = 0, k = kinetic, w = power;
     for (unsigned int i = 0; i < n; ++i)
       if (damped_dof[i] != 2)
         {
@@ -226,9 +228,11 @@ namespace anvil
           absorbed -= 0.5 * (damping_force_old[i] + fd) * v_old * dt_previous;
           damping_force_old[i] = fd;
           v[i]                 = v_new;
-          kinetic += v_old * (m[i] * v_old + dt_previous * ft);
-          power += ft * (v_new - v_old);
+          k += v_old * (m[i] * v_old + dt_previous * ft);
+          w += ft * (v_new - v_old);
         }
+    kinetic = k;
+    power   = w;
     get_energies().damping += Utilities::MPI::sum(absorbed, get_mpi_communicator());
   }
 
