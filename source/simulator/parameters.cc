@@ -528,9 +528,10 @@ namespace anvil
                         "zlib",
                         Patterns::Selection("zlib|none"),
                         "How the VTU pieces of the fields store their arrays: "
-                        "'zlib' compresses them in blocks of 32 KiB (VTK's "
-                        "vtkZLibDataCompressor, which ParaView reads as it "
-                        "is; the run's last lines give the ratio); 'none' "
+                        "'zlib' compresses them in blocks of 32 KiB at zlib's "
+                        "fastest level (VTK's vtkZLibDataCompressor, which "
+                        "ParaView reads as it is; the run's last lines give "
+                        "the ratio); 'none' "
                         "writes them as they are (base64). Units: none.");
       prm.declare_entry("Plots",
                         plots_default && std::string(plots_default) == "false" ? "false" :
