@@ -320,11 +320,11 @@ c.check_true("*CONTACT_ERODING_SURFACE_TO_SURFACE: the energy history equals the
 # another velocity, is refused (Anvil gives velocities to whole parts).
 generation = "*initial_velocity_generation\n1,2,0.0,0.0,0.0,-50.0\n\n"
 assert generation in free_deck
-striker_nodes = sorted({i for e in elements if e[1] == 1 for i in e[2]})
+striker_ids = sorted({i for e in elements if e[1] == 1 for i in e[2]})
 node_cards = {
-    "the striker's nodes": [f"{n},0.0,0.0,-50.0\n" for n in striker_nodes],
-    "a node left out": [f"{n},0.0,0.0,-50.0\n" for n in striker_nodes[1:]],
-    "a node at another velocity": [f"{n},0.0,0.0,{-49.0 if i == 3 else -50.0}\n" for i, n in enumerate(striker_nodes)],
+    "the striker's nodes": [f"{n},0.0,0.0,-50.0\n" for n in striker_ids],
+    "a node left out": [f"{n},0.0,0.0,-50.0\n" for n in striker_ids[1:]],
+    "a node at another velocity": [f"{n},0.0,0.0,{-49.0 if i == 3 else -50.0}\n" for i, n in enumerate(striker_ids)],
 }
 for what, cards in node_cards.items():
     with open(os.path.join(w, "node_velocity.k"), "w") as f:
