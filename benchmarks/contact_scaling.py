@@ -18,6 +18,11 @@ import subprocess
 import sys
 import tempfile
 
+if len(sys.argv) < 2 or sys.argv[1].startswith("-") or not os.access(sys.argv[1], os.X_OK):
+    sys.exit(f"usage: python3 {sys.argv[0]} ANVIL [options in its docstring] (ANVIL: the anvil executable, "
+             f"build/anvil; got {sys.argv[1]!r})" if len(sys.argv) > 1 else
+             f"usage: python3 {sys.argv[0]} ANVIL [options in its docstring] (ANVIL: the anvil executable, "
+             f"build/anvil)")
 anvil = sys.argv[1]
 sizes = [int(a) for a in sys.argv[2:4]] if len(sys.argv) > 3 else [112, 158]
 steps = int(sys.argv[4]) if len(sys.argv) > 4 else 30

@@ -61,6 +61,11 @@ import subprocess
 import sys
 import tempfile
 
+if len(sys.argv) < 2 or sys.argv[1].startswith("-") or not os.access(sys.argv[1], os.X_OK):
+    sys.exit(f"usage: python3 {sys.argv[0]} ANVIL [options in its docstring] (ANVIL: the anvil executable, "
+             f"build/anvil; got {sys.argv[1]!r})" if len(sys.argv) > 1 else
+             f"usage: python3 {sys.argv[0]} ANVIL [options in its docstring] (ANVIL: the anvil executable, "
+             f"build/anvil)")
 anvil = os.path.abspath(sys.argv[1])
 args = [a for a in sys.argv[2:] if not a.startswith("--")]
 end_time = float(args[0]) if args else 0.005

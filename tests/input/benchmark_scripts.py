@@ -5,10 +5,14 @@ under the source tree (os.path.join of the source or benchmark folder,
 named SOURCE, HERE or top, and strings ending in .prm, .inp, .k or .msh)
 exists. (Three scripts once imported
 scene builders that the test helpers no longer had, and failed at their
-first line.)"""
+first line.) Each script given '--help' answers without a traceback
+(argparse's help, or one usage line and a non-zero exit where the anvil
+executable comes first), within 60 s."""
 import ast
 import glob
 import os
+import subprocess
+import sys
 import anvil_test
 from anvil_test import Checker, arguments
 
@@ -42,4 +46,13 @@ for path in scripts:
     absent = [n for n in named if not any(os.path.exists(os.path.join(base, n))
                                           for base in (args.source_dir, os.path.dirname(path)))]
     c.check_true(f"{name}: the scene files it names exist ({len(named)})", not absent, "absent: " + ", ".join(absent))
+    env = dict(os.environ, PYTHONPATH=os.path.join(args.source_dir, "tests"))
+    try:
+        r = subprocess.run([sys.executable, path, "--help"], capture_output=True, text=True, timeout=60,
+                           cwd=args.work_dir, env=env)
+        answer = r.stdout + r.stderr
+        c.check_true(f"{name} --help: usage or help, no traceback",
+                     "Traceback" not in answer and ("usage" in answer.lower()), answer.strip()[-300:])
+    except subprocess.TimeoutExpired:
+        c.check_true(f"{name} --help: answers within 60 s", False)
 c.finish()
