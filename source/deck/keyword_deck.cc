@@ -343,7 +343,8 @@ namespace anvil::Deck
                 for (unsigned int d = 3; d < 6; ++d)
                   if (groups[g].values[d] != 0)
                     not_default(kw, "VXR/VYR/VZR (an initial rotation)", std::to_string(groups[g].values[d]));
-                for (const long pid : parts_of_nodes(mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g))))
+                const auto &nodes = mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g));
+                for (const long pid : parts_of_nodes(nodes))
                   groups_of_part[pid].push_back(g);
               }
             for (const auto &[pid, in] : groups_of_part)
@@ -352,7 +353,8 @@ namespace anvil::Deck
                 const auto        &nodes = mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g));
                 if (in.size() > 1 || !covers_part(nodes, pid))
                   unsupported(kw, "the nodes of part " + std::to_string(pid) +
-                                    (in.size() > 1 ? " are given different velocities" : " are not all given a velocity") +
+                                    (in.size() > 1 ? " are given different velocities" :
+                                                     " are not all given a velocity") +
                                     ": Anvil gives initial velocities to whole parts (one velocity a part)");
                 dealii::Tensor<1, 3> u;
                 for (unsigned int d = 0; d < 3; ++d)
@@ -688,15 +690,21 @@ namespace anvil::Deck
         // on the nodes of rigid parts (RWPNAL other than 0) is refused where
         // the set holds such a part; with RWPNAL = 0 LS-DYNA leaves them
         // alone, as Anvil does.
+        bool rigid_left_out = false;
         for (const long pid : touched)
           if (!parts.at(pid).rigid)
             wall.pids.push_back(pid);
-          else if (rwpnal != 0 && nsid != 0)
+          else if (nsid == 0)
+            rigid_left_out = true;
+          else if (rwpnal != 0)
             unsupported(kw, "the node set holds rigid part " + std::to_string(pid) +
                               ", which a rigid wall meets by penalty with *CONTROL_CONTACT's RWPNAL = " +
                               control_contact->fields(0)[1] +
                               " (supported: RWPNAL = 0, which leaves rigid parts alone, or a set without rigid "
                               "parts)");
+        if (rigid_left_out && rwpnal != 0)
+          w.differ("*RIGIDWALL_PLANAR: the wall meets no rigid part (LS-DYNA's penalty with RWPNAL = " +
+                   control_contact->fields(0)[1] + " would meet their nodes)");
         if (rwpnal > 0)
           wall.penalty = rwpnal * rwksf;
         else if (rwksf != 1)
@@ -1320,8 +1328,8 @@ namespace anvil::Deck
             }
           else
             {
-              w.comment("RWPNAL = 0: the wall constrains the nodes (kinematic contact: no springs, the "
-                        "elements' time step)");
+              w.comment("*CONTROL_CONTACT RWPNAL <= 0: the wall constrains the nodes (kinematic contact: no "
+                        "springs, the elements' time step)");
               w.set("Algorithm", "kinematic");
             }
           w.set("Static friction coefficient", wall.friction);
