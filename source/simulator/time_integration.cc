@@ -181,41 +181,13 @@ namespace anvil
       constraints->damped_velocity_update(dt_previous, dt_avg, f, m, v, moved_dof, kinetic, power);
     else
       {
-        // The free dofs four at a time, each lane summing its own dofs'
-        // products (GCC's generic vectors: AVX registers where the CPU has
-        // them, two SSE ones elsewhere), the lanes added at the end in a
-        // fixed order: the velocities are those of the dof-by-dof update,
-        // bit for bit, and the sums do not depend on the instruction set.
-        // (A dof-by-dof sum is one chain of additions, 4 cycles a dof.)
-        typedef double V4 __attribute__((vector_size(32), aligned(8)));
-        // (Loads and stores through the vector type, which GCC lets alias
-        // double; a memcpy went through the stack.)
-        const auto load = [](const double *p) { return *reinterpret_cast<const V4 *>(p); };
-        const bool    all_free = moved_dof.empty();
-        V4            k4 = {0., 0., 0., 0.}, w4 = k4;
-        unsigned int  i  = 0;
-        for (; i + 4 <= n; i += 4)
-          {
-            const V4 v_old = load(v + i), fi = load(f + i), mi = load(m + i);
-            V4       dv    = dt_avg * fi / mi;
-            V4       k_i   = v_old * (mi * v_old + dt_previous * fi);
-            V4       w_i   = fi * dv;
-            if (!all_free)
-              {
-                const V4 free = {moved_dof[i] ? 0. : 1., moved_dof[i + 1] ? 0. : 1., moved_dof[i + 2] ? 0. : 1.,
-                                 moved_dof[i + 3] ? 0. : 1.};
-                dv  = free != 0. ? dv : 0.;
-                k_i = free != 0. ? k_i : 0.;
-                w_i = free != 0. ? w_i : 0.;
-              }
-            const V4 v_new = v_old + dv;
-            *reinterpret_cast<V4 *>(v + i) = v_new;
-            k4 += k_i;
-            w4 += w_i;
-          }
+        // (The sums in locals: 'kinetic' and 'power' go to the constraints
+        // by reference, so that GCC kept them in memory, a store and a
+        // load in every dof's chain of additions. The same additions in
+        // the same order: the same bits.)
         double k = 0, w = 0;
-        for (; i < n; ++i)
-          if (all_free || !moved_dof[i])
+        if (moved_dof.empty())
+          for (unsigned int i = 0; i < n; ++i)
             {
               const double v_old = v[i];
               const double dv    = dt_avg * f[i] / m[i];
@@ -223,8 +195,18 @@ namespace anvil
               k += v_old * (m[i] * v_old + dt_previous * f[i]);
               w += f[i] * dv;
             }
-        kinetic = ((k4[0] + k4[1]) + (k4[2] + k4[3])) + k;
-        power   = ((w4[0] + w4[1]) + (w4[2] + w4[3])) + w;
+        else
+          for (unsigned int i = 0; i < n; ++i)
+            if (!moved_dof[i])
+              {
+                const double v_old = v[i];
+                const double dv    = dt_avg * f[i] / m[i];
+                v[i] += dv;
+                k += v_old * (m[i] * v_old + dt_previous * f[i]);
+                w += f[i] * dv;
+              }
+        kinetic = k;
+        power   = w;
       }
     double work = 0;
     constraints->impose(dt_previous, dt_avg, f, m, v, kinetic, work, power);
