@@ -142,7 +142,8 @@ subsection Probe tip
 end
 """
 # Decks that run as they come: a keyword deck in fixed columns (two
-# elements, a rigid wall, an initial velocity, a constrained set) and the
+# elements, a rigid wall, an initial velocity by part and node by node, a
+# constrained set) and the
 # ABAQUS deck above made whole (a section, a density, a velocity).
 KEYWORD_DECK = """*KEYWORD
 *TITLE
@@ -167,6 +168,19 @@ $ centre
 *SET_NODE_LIST
          7
       1001      1004      1005      1008
+*INITIAL_VELOCITY_NODE
+      1001  -10000.0       0.0       0.0
+      1002  -10000.0       0.0       0.0
+      1003  -10000.0       0.0       0.0
+      1004  -10000.0       0.0       0.0
+      1005  -10000.0       0.0       0.0
+      1006  -10000.0       0.0       0.0
+      1007  -10000.0       0.0       0.0
+      1008  -10000.0       0.0       0.0
+      1009  -10000.0       0.0       0.0
+      1010  -10000.0       0.0       0.0
+      1011  -10000.0       0.0       0.0
+      1012  -10000.0       0.0       0.0
 *BOUNDARY_SPC_SET
          7         0         0         1         0         0         0         0
 *RIGIDWALL_PLANAR
