@@ -337,21 +337,21 @@ namespace anvil::Deck
             // each velocity (the mesh reader's node sets) must hold whole
             // parts, which take that velocity.
             const auto groups = KeywordFile::node_velocity_groups(kw);
-            std::map<long, std::vector<unsigned int>> groups_of_part;
+            std::vector<const std::vector<unsigned int> *> group_nodes;
+            std::map<long, std::vector<unsigned int>>      groups_of_part;
             for (unsigned int g = 0; g < groups.size(); ++g)
               {
                 for (unsigned int d = 3; d < 6; ++d)
                   if (groups[g].values[d] != 0)
                     not_default(kw, "VXR/VYR/VZR (an initial rotation)", std::to_string(groups[g].values[d]));
-                const auto &nodes = mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g));
-                for (const long pid : parts_of_nodes(nodes))
+                group_nodes.push_back(&mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g)));
+                for (const long pid : parts_of_nodes(*group_nodes[g]))
                   groups_of_part[pid].push_back(g);
               }
             for (const auto &[pid, in] : groups_of_part)
               {
-                const unsigned int g     = in.front();
-                const auto        &nodes = mesh.node_sets.at(KeywordFile::node_velocity_set(n_node_velocities, g));
-                if (in.size() > 1 || !covers_part(nodes, pid))
+                const unsigned int g = in.front();
+                if (in.size() > 1 || !covers_part(*group_nodes[g], pid))
                   unsupported(kw, "the nodes of part " + std::to_string(pid) +
                                     (in.size() > 1 ? " are given different velocities" :
                                                      " are not all given a velocity") +
@@ -633,9 +633,13 @@ namespace anvil::Deck
     // nodes of deformable parts and leaves rigid parts alone (Anvil's
     // kinematic contact); > 0, a penalty of that scale factor on every node;
     // < 0, the penalty on the nodes of rigid parts only.
-    double rwpnal = 0;
+    double      rwpnal = 0;
+    std::string rwpnal_text;
     if (control_contact && !control_contact->cards.empty())
-      rwpnal = real(control_contact->fields(0)[1], control_contact->cards[0], "RWPNAL", 0.);
+      {
+        rwpnal_text = control_contact->fields(0)[1];
+        rwpnal      = real(rwpnal_text, control_contact->cards[0], "RWPNAL", 0.);
+      }
     double            size = 0;
     {
       dealii::Point<3> lo = mesh.vertices[0], hi = mesh.vertices[0];
@@ -699,12 +703,12 @@ namespace anvil::Deck
           else if (rwpnal != 0)
             unsupported(kw, "the node set holds rigid part " + std::to_string(pid) +
                               ", which a rigid wall meets by penalty with *CONTROL_CONTACT's RWPNAL = " +
-                              control_contact->fields(0)[1] +
+                              rwpnal_text +
                               " (supported: RWPNAL = 0, which leaves rigid parts alone, or a set without rigid "
                               "parts)");
         if (rigid_left_out && rwpnal != 0)
           w.differ("*RIGIDWALL_PLANAR: the wall meets no rigid part (LS-DYNA's penalty with RWPNAL = " +
-                   control_contact->fields(0)[1] + " would meet their nodes)");
+                   rwpnal_text + " would meet their nodes)");
         if (rwpnal > 0)
           wall.penalty = rwpnal * rwksf;
         else if (rwksf != 1)
