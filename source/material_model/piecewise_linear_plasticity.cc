@@ -21,7 +21,8 @@ namespace anvil::MaterialModel
   // sigma_y falls along every piece (slopes > -3G), so the first solution
   // within its piece is the root. With rate effects g(d) = q - 3G d - R(d /
   // dt) sigma_y(eps_p + d) is positive at 0 and not positive at the
-  // rate-free root (R >= 1): Newton's method in that bracket.
+  // rate-free root (R >= 1): Newton's method in that bracket, in y = (d /
+  // C dt)^(1/p).
   double FlowCurve::increment(const double q, const double eps_p, const double dt, const double three_G) const
   {
     double H;
@@ -42,20 +43,21 @@ namespace anvil::MaterialModel
       }
     if (!rate_effects || !(dt > 0))
       return d;
-    auto g = [&](const double x, double &slope) {
-      const double rate = x / dt;
-      double       R = 1., dR = 0.;
-      if (rate > 0)
-        {
-          const double r = std::pow(rate / C, 1. / p);
-          R              = 1. + r;
-          dR             = r / (p * x);
-        }
-      const double s = flow_stress(eps_p + x, H);
-      slope          = -three_G - dR * s - R * H;
-      return q - three_G * x - R * s;
+    // In the rate term's own variable y = (d / C dt)^(1/p) (R = 1 + y, d =
+    // C dt y^p), where g is smooth at 0 (in d it has the infinite slope of
+    // d^(1/p), doc/theory.md), from Newton's first step from y = 0.
+    const double Cdt = C * dt, y_max = std::pow(d / Cdt, 1. / p);
+    auto         g   = [&](const double y, double &slope) {
+      const double y_p1 = std::pow(y, p - 1.); // y^(p-1)
+      const double x    = Cdt * y_p1 * y, dx = p * Cdt * y_p1;
+      const double s    = flow_stress(eps_p + x, H);
+      slope             = -three_G * dx - s - (1. + y) * H * dx;
+      return q - three_G * x - (1. + y) * s;
     };
-    return bracketed_newton(g, 0., d, d, 1e-14 * d);
+    const double s0 = flow_stress(eps_p, H);
+    const double y1 = p > 1. ? (q - s0) / s0 : y_max;
+    const double y  = bracketed_newton(g, 0., y_max, std::min(y1, y_max), 1e-14 / p * y_max);
+    return std::min(Cdt * std::pow(y, p), d);
   }
 
 

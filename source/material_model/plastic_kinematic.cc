@@ -128,6 +128,8 @@ namespace anvil::MaterialModel
     // g(0) > 0 (beyond the static yield stress) and g(d0) <= 0 (R >= 1):
     // the root lies in [0, d0].
     const double K = elastic_term + (1. - beta) * plastic_modulus;
+    if (rate_law == RateLaw::cowper_symonds && p >= 1.)
+      return cowper_symonds_increment(q_trial, eps_p, dt, K, d0, R);
     auto g = [&](const double d, double &slope) {
       const double rate = d / dt;
       double       Rd = 1., dR = 0.;
@@ -149,6 +151,61 @@ namespace anvil::MaterialModel
     const double d = bracketed_newton(g, 0., d0, d0, 1e-14 * d0);
     R              = rate_factor(d / dt);
     return d;
+  }
+
+
+  // Cowper-Symonds' increment in the rate term's own variable
+  // y = (dep / (C dt))^(1/p): R = 1 + y, dep = C dt y^p, and
+  //   g(y) = q_trial - K C dt y^p - (1 + y) (sigma_0 + beta E_p (eps_p + C dt y^p)).
+  // In dep the rate term has the infinite slope of dep^(1/p) at 0, and
+  // Newton's method in dep stalled next to the root and bisected, 4 to 32
+  // evaluations of a pow a point; in y, g is smooth, decreasing and (for
+  // p >= 1) concave. Newton's step from y = 0 lands at or beyond the root
+  // (the tangent of a concave function lies above it), and from there every
+  // step stays beyond it and approaches it quadratically: no bracket, no
+  // bisection, 1 to 6 evaluations (doc/performance.md).
+  double PlasticKinematicLaw::cowper_symonds_increment(const double q_trial,
+                                                       const double eps_p,
+                                                       const double dt,
+                                                       const double K,
+                                                       const double d0,
+                                                       double      &R) const
+  {
+    const double Cdt = C * dt, Hb = beta * plastic_modulus;
+    const double static_yield = sigma_0 + Hb * eps_p;
+    // g and dep at y, and the slopes dg/dy and d dep/dy.
+    double     d = 0, slope = 0, dd = 0;
+    const auto g = [&](const double y) {
+      const double y_p1 = std::pow(y, p - 1.); // y^(p-1)
+      d                 = Cdt * y_p1 * y;
+      dd                = p * Cdt * y_p1;
+      const double sy   = static_yield + Hb * d;
+      slope             = -K * dd - sy - (1. + y) * Hb * dd;
+      return q_trial - K * d - (1. + y) * sy;
+    };
+    // y of the rate-free increment d0 (R >= 1 there, so g <= 0: at or
+    // beyond the root), and Newton's first step from y = 0, where
+    // g = q_trial - static_yield and dg/dy = -static_yield (p > 1).
+    const double y_max = std::pow(d0 / Cdt, 1. / p);
+    double       y =
+      p > 1. ? (q_trial - static_yield) / static_yield : (q_trial - static_yield) / (K * Cdt + static_yield + Hb * Cdt);
+    y                = std::min(y, y_max);
+    const double tolerance = 1e-14 * d0;
+    for (unsigned int it = 0; it < 60; ++it)
+      {
+        const double value = g(y);
+        // (At the root to round-off, value may come out >= 0: the step is
+        // then as small as the round-off, and ends the iteration.)
+        const double step = std::max(-y, -value / slope);
+        y += step;
+        if (std::abs(dd * step) <= tolerance)
+          {
+            d += dd * step;
+            break;
+          }
+      }
+    R = 1. + y;
+    return std::min(std::max(d, 0.), d0);
   }
 
 

@@ -98,8 +98,10 @@ namespace anvil::MaterialModel
      * consistency condition
      *   q_trial - (elastic_term + (1 - beta) E_p) dep
      *     = R(dep / dt) (sigma_0 + beta E_p (eps_p + dep))
-     * is solved for dep by Newton's method inside the bracket [0, rate-free
-     * increment] (bisection where a step leaves it). R(0) = 1, so a point
+     * is solved for dep: with Cowper-Symonds (p >= 1) by Newton's method in
+     * y = (dep / C dt)^(1/p) (cowper_symonds_increment()), otherwise in dep
+     * inside the bracket [0, rate-free increment] (bisection where a step
+     * leaves it). R(0) = 1, so a point
      * within the static yield stress is elastic at any rate. Rate-free
      * (no rate law or dt = 0): plastic_increment with R = 1. Returns dep
      * and sets @p R to the factor at the solution.
@@ -109,6 +111,11 @@ namespace anvil::MaterialModel
                                     double  dt,
                                     double  elastic_term,
                                     double &R) const;
+
+    /** rate_dependent_increment() for Cowper-Symonds with p >= 1, @p K
+        the elastic term plus the back stress's modulus and @p d0 the
+        rate-free increment. */
+    double cowper_symonds_increment(double q_trial, double eps_p, double dt, double K, double d0, double &R) const;
 
     /** Back-stress modulus (1 - beta) E_p. Units: Pa. */
     double kinematic_modulus() const

@@ -26,6 +26,11 @@ namespace anvil
         const double value = g(x, slope);
         (value > 0 ? lo : hi) = x;
         double next = x - value / slope;
+        // (At the root to round-off the step may vanish onto the end of
+        // the bracket just moved there: it ends the iteration rather than
+        // sending it to bisect a bracket the root has already been found in.)
+        if (std::abs(next - x) <= tolerance)
+          return next;
         if (!(next > lo && next < hi))
           next = 0.5 * (lo + hi);
         const bool done = std::abs(next - x) <= tolerance || hi - lo <= tolerance;
