@@ -38,6 +38,18 @@ namespace anvil::Contact
       return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
     }
 
+    /** The cross product of a face's diagonals @p d1 = x2 - x0 and @p d2 =
+        x3 - x1 (outward, twice the area of a flat face). */
+    inline Vec diagonals_normal(const std::vector<double> &x, const std::array<unsigned int, 4> &q, Vec &d1, Vec &d2)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          d1[d] = x[3 * q[2] + d] - x[3 * q[0] + d];
+          d2[d] = x[3 * q[3] + d] - x[3 * q[1] + d];
+        }
+      return cross(d1, d2);
+    }
+
     /**
      * The point of the bilinear quadrilateral @p X (cyclic corners at
      * (xi, eta) = (-1,-1), (1,-1), (1,1), (-1,1)) nearest to @p p, by
@@ -373,20 +385,38 @@ namespace anvil::Contact
               }
             continue;
           }
+        // Each face's candidate box: where a node it takes can lie, the
+        // face swept behind itself by the depth the test below accepts
+        // (half its element's thickness), with a margin of a tenth of the
+        // face's size and of that depth all round (the test's 2 % beyond
+        // the edges, a warped face's normals). A box grown by the whole
+        // depth in every direction held some 25 faces of a wall of 2.5 mm
+        // faces 5 mm thick for each node near it, 24 of which then failed
+        // the projection (doc/performance.md, "Kinematic contact's
+        // candidates").
         std::vector<std::pair<BBox, unsigned int>> boxes;
         for (unsigned int k = 0; k < masters.segments.size(); ++k)
           if (masters.active[k])
             {
+              const auto  &q = masters.segments[k];
+              Vec          d1, d2;
+              const Vec    c     = diagonals_normal(xp, q, d1, d2);
+              const double len   = std::sqrt(dot(c, c));
+              const double reach = 0.5 * masters.depth[k];
+              const double margin =
+                0.1 * (std::sqrt(std::max(dot(d1, d1), dot(d2, d2))) + reach);
               Vec lo{{1e300, 1e300, 1e300}}, hi{{-1e300, -1e300, -1e300}};
-              for (const unsigned int a : masters.segments[k])
+              for (const unsigned int a : q)
                 for (unsigned int d = 0; d < 3; ++d)
                   {
-                    lo[d] = std::min(lo[d], xp[3 * a + d]);
-                    hi[d] = std::max(hi[d], xp[3 * a + d]);
+                    // (A degenerate face, no normal: the depth all round.)
+                    const double behind = len > 0 ? xp[3 * a + d] - reach * c[d] / len : xp[3 * a + d];
+                    const double r      = len > 0 ? 0. : reach;
+                    lo[d] = std::min({lo[d], xp[3 * a + d] - r, behind});
+                    hi[d] = std::max({hi[d], xp[3 * a + d] + r, behind});
                   }
-              const double r = masters.depth[k];
-              boxes.emplace_back(BBox(BPoint(lo[0] - r, lo[1] - r, lo[2] - r),
-                                      BPoint(hi[0] + r, hi[1] + r, hi[2] + r)),
+              boxes.emplace_back(BBox(BPoint(lo[0] - margin, lo[1] - margin, lo[2] - margin),
+                                      BPoint(hi[0] + margin, hi[1] + margin, hi[2] + margin)),
                                  k);
             }
         if (boxes.empty())
@@ -399,12 +429,9 @@ namespace anvil::Contact
         for (unsigned int k = 0; k < slaves.segments.size(); ++k)
           if (slaves.active[k])
             {
-              const auto  &q  = slaves.segments[k];
-              const Vec    d1 = {{xp[3 * q[2]] - xp[3 * q[0]], xp[3 * q[2] + 1] - xp[3 * q[0] + 1],
-                                  xp[3 * q[2] + 2] - xp[3 * q[0] + 2]}};
-              const Vec    d2 = {{xp[3 * q[3]] - xp[3 * q[1]], xp[3 * q[3] + 1] - xp[3 * q[1] + 1],
-                                  xp[3 * q[3] + 2] - xp[3 * q[1] + 2]}};
-              const Vec    c   = cross(d1, d2);
+              const auto  &q = slaves.segments[k];
+              Vec          d1, d2;
+              const Vec    c   = diagonals_normal(xp, q, d1, d2);
               const double len = std::sqrt(dot(c, c));
               if (len > 0)
                 for (const unsigned int a : q)
