@@ -8,7 +8,8 @@
  *   q - K dep = (1 + (dep / (C dt))^(1/p)) (sigma_0 + beta E_p (eps_p + dep)),
  * K = 3G + (1 - beta) E_p (3D) or E + (1 - beta) E_p (a truss). The
  * reference root is found by bisection in long double on [0, d0] (d0 the
- * rate-free increment), 200 halvings. Swept: p from 1 to 10, C from 40 to
+ * rate-free increment), 200 halvings. Swept: p from 0.5 (the bracketed
+ * iteration in dep) to 10, C from 40 to
  * 6500 1/s, dt from 1e-8 to 1e-5 s, overstress (q - sigma_y) / sigma_y
  * from 1e-9 to 100, with and without hardening and its isotropic share:
  * the rate term from negligible to dominant. Checked: the increment
@@ -59,7 +60,7 @@ int main()
   double       worst_increment = 0, worst_stress = 0, worst_residual = 0, worst_factor = 0;
   unsigned int cases           = 0;
   const double sigma_0         = 235e6;
-  for (const double p : {1., 1.5, 2.5, 5., 10.})
+  for (const double p : {0.5, 1., 1.5, 2.5, 5., 10.})
     for (const double C : {40., 6500.})
       for (const double dt : {1e-8, 1e-7, 1e-6, 1e-5})
         for (const double over : {1e-9, 1e-6, 1e-3, 0.1, 1., 10., 100.})
