@@ -387,7 +387,7 @@ namespace anvil::Contact
           }
         // Each face's candidate box: where a node it takes can lie, the
         // face swept behind itself by the depth the test below accepts
-        // (half its element's thickness), with a margin of a tenth of the
+        // (half its element's thickness), with a margin of a quarter of the
         // face's size and of that depth all round (the test's 2 % beyond
         // the edges, a warped face's normals). A box grown by the whole
         // depth in every direction held some 25 faces of a wall of 2.5 mm
@@ -404,7 +404,7 @@ namespace anvil::Contact
               const double len   = std::sqrt(dot(c, c));
               const double reach = 0.5 * masters.depth[k];
               const double margin =
-                0.1 * (std::sqrt(std::max(dot(d1, d1), dot(d2, d2))) + reach);
+                0.25 * (std::sqrt(std::max(dot(d1, d1), dot(d2, d2))) + reach);
               Vec lo{{1e300, 1e300, 1e300}}, hi{{-1e300, -1e300, -1e300}};
               for (const unsigned int a : q)
                 for (unsigned int d = 0; d < 3; ++d)
