@@ -18,7 +18,8 @@
  * has by default, for A/B comparisons of builds; materials: the
  * elastic step and each material's ratio to it, five times in turn, and
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
- * steel-yielding, concrete-elastic, concrete-cracking, jc-elastic, jc-yielding,
+ * steel-yielding, steel-yielding-rate (Cowper-Symonds), concrete-elastic,
+ * concrete-cracking, jc-elastic, jc-yielding,
  * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0), elastic-bulk
  * (with bulk viscosity), full, full-bulk (full integration, elastic)
  * alone, for profiling)
@@ -249,6 +250,7 @@ int main(int argc, char **argv)
       const std::string name = argv[3];
       const Result      r    = name == "steel-elastic"     ? steel_elastic() :
                                name == "steel-yielding"    ? steel_yielding(false) :
+                               name == "steel-yielding-rate" ? steel_yielding(true) :
                                name == "concrete-elastic"  ? concrete_elastic() :
                                name == "concrete-cracking" ? concrete_cracking() :
                                name == "jc-elastic"        ? jc_elastic() :
@@ -266,7 +268,7 @@ int main(int argc, char **argv)
         {
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
-                       "elastic, steel-elastic, steel-yielding, concrete-elastic, "
+                       "elastic, steel-elastic, steel-yielding, steel-yielding-rate, concrete-elastic, "
                        "concrete-cracking, jc-elastic, jc-yielding, jc-yielding-total, elastic-bulk, full, full-bulk)\n",
                        name.c_str());
           return 1;
