@@ -1355,16 +1355,27 @@ namespace anvil::Element
               ve[n][a] = v[en[n] + a];
             }
 
-        // Jacobians of position and velocity at the points.
-        alignas(64) double Jn[3][3][W] = {}, Jd[3][3][W] = {};
-        for (unsigned int n = 0; n < 8; ++n)
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int c = 0; c < 3; ++c)
+        // Jacobians of position and velocity at the points, one entry at a
+        // time summed over the nodes in registers (summed node by node into
+        // the arrays, every partial sum went through memory: a load and a
+        // store per term; the order of the sums is the same).
+        alignas(64) double Jn[3][3][W], Jd[3][3][W];
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              alignas(64) double jn[W] = {}, jd[W] = {};
+              for (unsigned int n = 0; n < 8; ++n)
+                for (unsigned int l = 0; l < W; ++l)
+                  {
+                    jn[l] += xe[n][a] * dNp[n][c][l];
+                    jd[l] += ve[n][a] * dNp[n][c][l];
+                  }
               for (unsigned int l = 0; l < W; ++l)
                 {
-                  Jn[a][c][l] += xe[n][a] * dNp[n][c][l];
-                  Jd[a][c][l] += ve[n][a] * dNp[n][c][l];
+                  Jn[a][c][l] = jn[l];
+                  Jd[a][c][l] = jd[l];
                 }
+            }
         alignas(64) double detn[W], Jm[3][3][W], detm[W];
         determinant_batch(Jn, detn);
         bool inverted = false;
