@@ -466,7 +466,7 @@ namespace anvil::MaterialModel
       const double K = elastic_term + (1. - law.beta) * law.plastic_modulus, zero = 0., one = 1.;
       const V      q = V::load(q_trial), yield = V::load(eps_p) * Hb + law.sigma_0;
       // The rate-free increment (plastic_increment() with R = 1).
-      const V d0 = (q - yield) / (elastic_term + (1. - law.beta) * law.plastic_modulus + Hb);
+      const V d0 = (q - yield) / (K + Hb);
       M       running = (V::load(active_lanes) != zero) && (d0 > zero);
       if (!any(running))
         {
@@ -475,7 +475,8 @@ namespace anvil::MaterialModel
         }
       const V d0_m  = Simd::max(d0, 1e-300);
       const V y_max = Simd::exp(Simd::log(d0_m / Cdt) * (1. / p));
-      V       y = Simd::min(p > 1. ? (q - yield) / yield : (q - yield) / (yield + (K * Cdt + Hb * Cdt)), y_max);
+      // (The start of cowper_symonds_increment(), its sums in its order.)
+      V y = Simd::min(p > 1. ? (q - yield) / yield : (q - yield) / (yield + K * Cdt + Hb * Cdt), y_max);
       y       = select(running, y, zero);
       V d = zero;
       const V tolerance = d0_m * 1e-14;
