@@ -416,7 +416,8 @@ namespace anvil::MaterialModel
                         const double         *previous_rate,
                         const double         *total_rate,
                         double               *s,
-                        double               *h)
+                        double               *h,
+                        JohnsonCook::ReturnCounts &counts)
     {
       using V                  = Simd::Pack<R>;
       using M                  = Simd::Mask<R>;
@@ -457,13 +458,16 @@ namespace anvil::MaterialModel
       // u^11, the first term left off below 1e-18 of the value.
       constexpr unsigned int series_terms = 11;
       constexpr double       series_reach = 0.03;
-      double                 binomial[series_terms];
+      double                 binomial[series_terms], binomial_m[series_terms];
       for (unsigned int k = 0; k < series_terms; ++k)
-        binomial[k] = (law.n - k) / (k + 1.);
-      auto power_series = [&](const V &u) {
+        {
+          binomial[k]   = (law.n - k) / (k + 1.);
+          binomial_m[k] = (law.m - k) / (k + 1.);
+        }
+      auto power_series = [&](const V &u, const double (&c)[series_terms]) {
         V r = one;
         for (unsigned int k = series_terms; k-- > 0;)
-          r = one + binomial[k] * u * r;
+          r = one + c[k] * u * r;
         return r;
       };
       auto log1p_series = [&](const V &u) {
@@ -505,6 +509,7 @@ namespace anvil::MaterialModel
       active         = active && (q > s0 * rate_factor);
       if (!any(active))
         return;
+      ++counts.packs;
       // 1 / theta and 1 / eps_0 from one division.
       const V theta_m = Simd::max(thermal, floor), eps0_m = Simd::max(eps0, floor);
       const V r0 = one / (theta_m * eps0_m), inv_theta = eps0_m * r0, inv_eps0 = theta_m * r0;
@@ -523,6 +528,7 @@ namespace anvil::MaterialModel
         {
           const V over = (law.total_rate ? q / Simd::max(scaled, tiny) : q * inv_theta) - A;
           const V d_h  = power(over * inv_B, inv_n) - eps0;
+          ++counts.flow_stress_functions;
           d = select((scaled > zero) && (over > zero) && (d_h > zero), Simd::min(d_h, scale), d);
         }
       d = select(take_guess, guess, d);
@@ -534,11 +540,24 @@ namespace anvil::MaterialModel
       // rate term's kink); between, their series. Once every running lane
       // is within reach, the steps that polish the roots cost no
       // transcendental function.
-      V    lo = zero, hi = scale;
-      M    running = active;
-      V    x_a = zero, xn_a = zero, d_a = zero, log_a = zero, inv_x_a = zero, inv_d_a = zero;
-      M    fast_a   = running && !running;
-      bool anchored = false;
+      //
+      // The first point of evaluation is the stored state itself where the
+      // lane has one (x_a = eps_0, whose x_a^n = B eps_0^n / B is known) and
+      // the first guess (ln(d / dt eps_0_dot), needed there in any case): a
+      // lane in steady flow, whose increment is a small part of its plastic
+      // strain, then evaluates no power at all.
+      V       lo = zero, hi = scale;
+      M       running = active;
+      const M stored  = (eps0 > zero) && (thermal > zero);
+      V       x_a = select(stored, eps0, zero), xn_a = Be0n * inv_B, dx_a = zero, d_a = d,
+        inv_x_a = select(stored, inv_eps0, zero), inv_d_a = zero;
+      const V ratio_0 = d * inv_rate;
+      M       fast_a  = ratio_0 > one;
+      const bool log_0_needed = any(fast_a && running);
+      V       log_a   = log_0_needed ? Simd::log(Simd::max(ratio_0, tiny)) : zero;
+      counts.flow_stress_functions += log_0_needed;
+      const V log_0   = log_a;
+      bool    anchored = true;
       for (unsigned int it = 0; it < 100 && any(running); ++it)
         {
           const V x     = eps0 + d;
@@ -549,25 +568,30 @@ namespace anvil::MaterialModel
           // of its batch (np = 2 gives np = 1's bits).
           V xn, log_ratio;
           M small = running && !running;
-          if (anchored)
-            {
-              const V u_x = (d - d_a) * inv_x_a;
-              const V u_d = (d - d_a) * inv_d_a;
-              small       = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
-                      (!fast || ((d_a > zero) && (Simd::abs(u_d) <= V(series_reach))));
-              xn          = xn_a * power_series(u_x);
-              log_ratio   = log_a + log1p_series(u_d);
-            }
           // 1 / x and 1 / d from one division.
           const V x_m = Simd::max(x, floor), d_m = Simd::max(d, floor), r_xd = one / (x_m * d_m);
           const V inv_x = d_m * r_xd, inv_d = x_m * r_xd;
+          if (it == 0)
+            inv_d_a = inv_d; // (d_a = d: u_d = 0 whatever it is)
+          if (anchored)
+            {
+              const V u_x = (d - dx_a) * inv_x_a;
+              const V u_d = (d - d_a) * inv_d_a;
+              small       = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
+                      (!fast || ((d_a > zero) && (Simd::abs(u_d) <= V(series_reach))));
+              xn          = xn_a * power_series(u_x, binomial);
+              log_ratio   = log_a + log1p_series(u_d);
+            }
           if (!all(small || !running))
             {
+              ++counts.flow_stress_functions;
               const V xn_f  = power(x, n_exp);
-              const V log_f = any(fast && running) ? Simd::log(Simd::max(ratio, tiny)) : zero;
+              // (At the first guess, the logarithm computed above.)
+              const V log_f = it == 0 ? log_0 : any(fast && running) ? Simd::log(Simd::max(ratio, tiny)) : zero;
               xn            = select(small, xn, xn_f);
               log_ratio     = select(small, log_ratio, log_f);
               x_a           = select(small, x_a, x);
+              dx_a          = select(small, dx_a, d);
               xn_a          = select(small, xn_a, xn_f);
               d_a           = select(small, d_a, d);
               inv_x_a       = select(small, inv_x_a, inv_x);
@@ -631,15 +655,28 @@ namespace anvil::MaterialModel
           T1.store(row(h, 2));
           if (thermal_on)
             {
-              thermal1 = select(active, thermal_factor(homologous(T1)), thermal);
+              // 1 - T_1*^m from the stored T_0*^m = 1 - theta_0 and the
+              // series of (1 + u)^m, u = (T_1* - T_0*) / T_0*, where the
+              // step's heating is within its reach (a point heated over
+              // many steps); else the functions.
+              const V Ts0  = homologous(T0), Ts1 = homologous(T1);
+              const V u_T  = (Ts1 - Ts0) / Simd::max(Ts0, tiny);
+              const M near = (Ts0 > zero) && (Ts1 < one) && (Simd::abs(u_T) <= V(series_reach));
+              V       th   = one - (one - thermal) * power_series(u_T, binomial_m);
+              if (!all(near || !active))
+                {
+                  ++counts.thermal_functions;
+                  th = select(near, th, thermal_factor(Ts1));
+                }
+              thermal1 = select(active, th, thermal);
               thermal1.store(row(h, 6));
             }
         }
       // eps_1^n by the series about the lane's last point of evaluation
       // where it is within its reach, as in the iteration.
-      const V u_x    = (eps1 - x_a) * inv_x_a;
+      const V u_x    = (dep - dx_a) * inv_x_a;
       const M small  = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach));
-      V       eps1_n = xn_a * power_series(u_x);
+      V       eps1_n = xn_a * power_series(u_x, binomial);
       if (!all(small || !active))
         eps1_n = select(small, eps1_n, power(eps1, n_exp));
       const V flow = (A + B * eps1_n) * thermal1;
@@ -665,7 +702,7 @@ namespace anvil::MaterialModel
       history.load(k, h[k]);
     for (unsigned int l = 0; l < W; ++l)
       active[l] = flag[l] != 0 ? 1. : 0.;
-    plastic_return<W / Simd::register_lanes>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0]);
+    plastic_return<W / Simd::register_lanes>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0], counts);
     for (unsigned int k = 0; k < n_return_history; ++k)
       history.store(k, h[k]);
   }

@@ -188,6 +188,22 @@ namespace anvil::MaterialModel
       return law;
     }
 
+    /** What the batched returns cost so far (tests, benchmarks): the
+        vector register packs that returned; the packs' evaluations of the
+        transcendental functions of the flow stress (the first guess's
+        power and logarithm, and x^n with the logarithm at each point of
+        the iteration that the series about the last evaluation do not
+        reach); those of the thermal factor. A pack in steady flow
+        evaluates one logarithm, at its first guess (doc/performance.md). */
+    struct ReturnCounts
+    {
+      unsigned long packs = 0, flow_stress_functions = 0, thermal_functions = 0;
+    };
+    const ReturnCounts &return_counts() const
+    {
+      return counts;
+    }
+
   private:
     /** The return, heating and damage of one point whose trial stress is
         @p s (updated in place) and history @p h. */
@@ -205,8 +221,9 @@ namespace anvil::MaterialModel
                               const double (&previous_rate)[batch_size], const double (&total_rate)[batch_size],
                               double (&s)[6][batch_size], const BatchHistory &history) const;
 
-    JohnsonCookLaw law;
-    double         initial_temperature = 0;
-    bool           erosion             = false;
+    JohnsonCookLaw       law;
+    double               initial_temperature = 0;
+    bool                 erosion             = false;
+    mutable ReturnCounts counts;
   };
 } // namespace anvil::MaterialModel
