@@ -214,8 +214,25 @@ namespace
 
 int main(int argc, char **argv)
 {
-  const unsigned int n      = argc > 1 ? std::atoi(argv[1]) : 47;
-  const unsigned int cycles = argc > 2 ? std::atoi(argv[2]) : 40;
+  // n and cycles: whole numbers, n from 2 to 200 (200^3 elements take
+  // about 2 GB), cycles from 1 to 100,000.
+  const auto whole = [&](const int k, const long low, const long high, const long fallback) {
+    if (argc <= k)
+      return fallback;
+    char      *end   = nullptr;
+    const long value = std::strtol(argv[k], &end, 10);
+    if (end == argv[k] || *end != '\0' || value < low || value > high)
+      {
+        std::fprintf(stderr,
+                     "element_throughput: argument %d '%s' must be a whole number from %ld to %ld "
+                     "(usage: element_throughput [n] [cycles] [one-point | materials | CASE])\n",
+                     k, argv[k], low, high);
+        std::exit(1);
+      }
+    return value;
+  };
+  const unsigned int n      = whole(1, 2, 200, 47);
+  const unsigned int cycles = whole(2, 1, 100000, 40);
   std::printf("element_throughput: %u elements (%u^3), %u cycles, one core\n", n * n * n, n, cycles);
   run(n, cycles / 4 + 1, Element::Integration::one_point); // warm up the machine
   // The one-point elastic step through the element-by-element reference loop.

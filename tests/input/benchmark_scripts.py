@@ -7,7 +7,8 @@ exists. (Three scripts once imported
 scene builders that the test helpers no longer had, and failed at their
 first line.) Each script given '--help' answers without a traceback
 (argparse's help, or one usage line and a non-zero exit where the anvil
-executable comes first), within 60 s."""
+executable comes first), within 60 s. The C++ benchmark element_throughput
+answers bad counts with one line and exit 1."""
 import ast
 import glob
 import os
@@ -55,4 +56,17 @@ for path in scripts:
                      "Traceback" not in answer and ("usage" in answer.lower()), answer.strip()[-300:])
     except subprocess.TimeoutExpired:
         c.check_true(f"{name} --help: answers within 60 s", False)
+# The C++ benchmark beside the executable: a bad count is one line and
+# exit 1 (it once ran 0 elements and printed inf and nan); a small run
+# answers.
+throughput = os.path.join(os.path.dirname(args.anvil), "benchmarks", "element_throughput")
+if os.path.exists(throughput):
+    for bad in (["--help"], ["10", "x"], ["1"], ["10", "0"]):
+        r = subprocess.run([throughput] + bad, capture_output=True, text=True, timeout=60)
+        c.check_true(f"element_throughput {' '.join(bad)}: one line, exit 1",
+                     r.returncode == 1 and r.stdout == "" and len(r.stderr.strip().splitlines()) == 1,
+                     f"exit {r.returncode}: {(r.stdout + r.stderr).strip()[-300:]}")
+    r = subprocess.run([throughput, "4", "2", "elastic"], capture_output=True, text=True, timeout=60)
+    c.check_true("element_throughput 4 2 elastic: runs", r.returncode == 0 and "ns per element-cycle" in r.stdout,
+                 (r.stdout + r.stderr).strip()[-300:])
 c.finish()
