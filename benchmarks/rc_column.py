@@ -317,7 +317,9 @@ end
         local = rows[name]
         print(f"  {name} against uniform 10 mm: " +
               ", ".join(f"{k} {100 * (local[k] / fine[k] - 1):+.1f} %" for k in ("peak", "residual", "far face", "force")) +
-              f"; elements at the end {local['elements'] / fine['elements']:.2f}, wall time {local['wall'] / fine['wall']:.2f}")
+              f"; elements at the end {local['elements'] / fine['elements']:.2f}, wall time {local['wall'] / fine['wall']:.2f}"
+              f" (per step {(local['wall'] / local['steps']) / (fine['wall'] / fine['steps']):.2f}: each run ends by its"
+              f" own end criterion)")
 else:
     print("rc_column: mesh study, bond-slip column to the end criterion")
     previous = None
