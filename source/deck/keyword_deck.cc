@@ -166,7 +166,7 @@ namespace anvil::Deck
                 if (!parts.emplace(p.pid, p).second)
                   unsupported(kw, "part " + std::to_string(p.pid) + " is defined twice");
               }
-            if (kw.cards.size() % 2 != 0 && kw.cards.back().text.find_first_not_of(" \t") != std::string::npos)
+            if (kw.cards.size() % 2 != 0 && !kw.cards.back().blank())
               unsupported(kw, "a heading without its card 'PID SECID MID ...'");
           }
         else if (n == "SECTION_SOLID")
@@ -469,7 +469,7 @@ namespace anvil::Deck
         const Keyword &kw = *kwp;
         for (unsigned int c = 0; c < kw.cards.size(); ++c)
           {
-            if (kw.cards[c].text.find_first_not_of(" \t") == std::string::npos)
+            if (kw.cards[c].blank())
               continue;
             const auto f = kw.fields(c);
             if (integer(f[1], kw.cards[c], "CID") != 0)
@@ -499,7 +499,7 @@ namespace anvil::Deck
       const double   sfo = real(h[3], curve.cards[0], "SFO", 1), offo = real(h[5], curve.cards[0], "OFFO");
       std::set<double> ordinates;
       for (unsigned int k = 1; k < curve.cards.size(); ++k)
-        if (curve.cards[k].text.find_first_not_of(" \t") != std::string::npos)
+        if (!curve.cards[k].blank())
           ordinates.insert(real(curve.fields(k, {20, 20})[1], curve.cards[k], "*DEFINE_CURVE O"));
       if (ordinates.size() != 1)
         unsupported(kw, "curve " + std::to_string(lcid) +
@@ -544,7 +544,7 @@ namespace anvil::Deck
         const Keyword &kw = *kwp;
         for (unsigned int c = 0; c < kw.cards.size(); ++c)
           {
-            if (kw.cards[c].text.find_first_not_of(" \t") == std::string::npos)
+            if (kw.cards[c].blank())
               continue;
             // ID DOF VAD LCID SF VID DEATH BIRTH
             const auto f   = kw.fields(c);
@@ -1095,7 +1095,7 @@ namespace anvil::Deck
                 const double   sfa = real(h[2], curve.cards[0], "SFA", 1), sfo = real(h[3], curve.cards[0], "SFO", 1),
                              offa = real(h[4], curve.cards[0], "OFFA"), offo = real(h[5], curve.cards[0], "OFFO");
                 for (unsigned int k = 1; k < curve.cards.size(); ++k)
-                  if (curve.cards[k].text.find_first_not_of(" \t") != std::string::npos)
+                  if (!curve.cards[k].blank())
                     {
                       const auto xy = curve.fields(k, {20, 20});
                       points.emplace_back((sfa == 0 ? 1 : sfa) * (real(xy[0], curve.cards[k], "*DEFINE_CURVE A") + offa),

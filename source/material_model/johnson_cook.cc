@@ -590,15 +590,20 @@ namespace anvil::MaterialModel
               const V log_f = it == 0 ? log_0 : any(fast && running) ? Simd::log(Simd::max(ratio, tiny)) : zero;
               xn            = select(small, xn, xn_f);
               log_ratio     = select(small, log_ratio, log_f);
-              x_a           = select(small, x_a, x);
-              dx_a          = select(small, dx_a, d);
-              xn_a          = select(small, xn_a, xn_f);
-              d_a           = select(small, d_a, d);
-              inv_x_a       = select(small, inv_x_a, inv_x);
-              inv_d_a       = select(small, inv_d_a, inv_d);
-              log_a         = select(small, log_a, log_f);
-              fast_a        = (small && fast_a) || (!small && fast);
-              anchored      = true;
+              // (A lane that has stopped keeps its point of evaluation:
+              // its new flow stress below takes the series about it, so
+              // that the functions other lanes still evaluate do not
+              // change its last bits.)
+              const M keep = small || !running;
+              x_a          = select(keep, x_a, x);
+              dx_a         = select(keep, dx_a, d);
+              xn_a         = select(keep, xn_a, xn_f);
+              d_a          = select(keep, d_a, d);
+              inv_x_a      = select(keep, inv_x_a, inv_x);
+              inv_d_a      = select(keep, inv_d_a, inv_d);
+              log_a        = select(keep, log_a, log_f);
+              fast_a       = (keep && fast_a) || (!keep && fast);
+              anchored     = true;
             }
           const M pos    = x > zero;
           const V H      = A + B * xn;

@@ -324,7 +324,7 @@ namespace anvil::KeywordFile
     for (unsigned int c = 0; c < kw.cards.size(); ++c)
       {
         const Card &card = kw.cards[c];
-        if (card.text.find_first_not_of(" \t") == std::string::npos)
+        if (card.blank())
           continue;
         const auto            f = kw.fields(c);
         std::array<double, 6> v;

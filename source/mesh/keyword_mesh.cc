@@ -53,7 +53,7 @@ namespace anvil::MeshFile
         for (unsigned int c = 0; c < kw.cards.size(); ++c)
           {
             const Card &card = kw.cards[c];
-            if (card.text.find_first_not_of(" \t") == std::string::npos)
+            if (card.blank())
               continue;
             const auto f   = kw.fields(c, {8, 16, 16, 16, 8, 8});
             const long nid = integer(f[0], card, "*NODE NID");
@@ -77,7 +77,7 @@ namespace anvil::MeshFile
         for (unsigned int c = 0; c < kw.cards.size(); ++c)
           {
             const Card &card = kw.cards[c];
-            if (card.text.find_first_not_of(" \t") == std::string::npos)
+            if (card.blank())
               continue;
             auto       f   = kw.fields(c, std::vector<unsigned int>(10, 8));
             const long eid = integer(f[0], card, "*ELEMENT_SOLID EID");
@@ -159,7 +159,7 @@ namespace anvil::MeshFile
             out.surfaces["SEGMENTSET" + std::to_string(sid)] = id;
             for (unsigned int c = 1; c < kw.cards.size(); ++c)
               {
-                if (kw.cards[c].text.find_first_not_of(" \t") == std::string::npos)
+                if (kw.cards[c].blank())
                   continue;
                 const auto                  f = kw.fields(c);
                 std::array<unsigned int, 4> face;
@@ -178,7 +178,7 @@ namespace anvil::MeshFile
         for (unsigned int c = 1; c < kw.cards.size(); ++c)
           {
             const Card &card = kw.cards[c];
-            if (card.text.find_first_not_of(" \t") == std::string::npos)
+            if (card.blank())
               continue;
             const auto f = kw.fields(c);
             if (list)
@@ -257,7 +257,7 @@ namespace anvil::MeshFile
         for (unsigned int c = 0; c < kw.cards.size(); ++c)
           {
             const Card &card = kw.cards[c];
-            if (card.text.find_first_not_of(" \t") == std::string::npos)
+            if (card.blank())
               continue;
             const auto          f = kw.fields(c);
             std::array<bool, 3> dofs;

@@ -22,7 +22,8 @@
  *   dep, of q / 3G (the return's own tolerance is 1e-12 of it);
  * - that each lane's results do not depend on the other lanes of its batch
  *   (each lane alone in a batch of points at rest gives the same bits: np =
- *   2 gives np = 1's results);
+ *   2 gives np = 1's results), for the seven paths and for 21 paths whose
+ *   rates are modulated step by step;
  * - that the series carry the steady flow: evaluations of the functions per
  *   returning pack over the last 1,500 steps.
  */
@@ -49,6 +50,19 @@ namespace
   std::array<double, 6> rate_of(const int lane, const unsigned int i)
   {
     std::array<double, 6> D{};
+    // Lanes 100-120: the seven paths at 1, 0.37 and 2.9 times their rate,
+    // each modulated by 1 + 0.5 sin(0.013 k i): increments that change
+    // from step to step, so that lanes stop after different numbers of
+    // Newton steps and leave the series' reach at different steps.
+    if (lane >= 100)
+      {
+        const int    k     = lane - 100;
+        const double scale = (k / 7) % 3 == 0 ? 1. : (k / 7) % 3 == 1 ? 0.37 : 2.9;
+        D                  = rate_of(k % 7, i);
+        for (double &d : D)
+          d *= scale * (1. + 0.5 * std::sin(0.013 * (k + 1) * i));
+        return D;
+      }
     switch (lane)
       {
         case 0: // uniaxial tension, 3,000 1/s
@@ -240,7 +254,24 @@ int main()
       alone[(l + 3) % W] = lanes[l];
       differing += run_batch(model, alone).out[(l + 3) % W] != together.out[l];
     }
-  check_below("lanes whose results depend on their batch-mates", double(differing), 0.);
+  // The same for 21 modulated paths in three batches.
+  for (int b = 0; b < 3; ++b)
+    {
+      std::array<int, W> batch;
+      for (unsigned int l = 0; l < W; ++l)
+        batch[l] = 8 * b + int(l) < 21 ? 100 + 8 * b + int(l) : -1;
+      const Run mixed = run_batch(model, batch);
+      for (unsigned int l = 0; l < W; ++l)
+        if (batch[l] >= 0)
+          {
+            std::array<int, W> alone;
+            alone.fill(-1);
+            alone[(l + 5) % W] = batch[l];
+            differing += run_batch(model, alone).out[(l + 5) % W] != mixed.out[l];
+          }
+    }
+  check_below("lanes whose results depend on their batch-mates (7 paths, and 21 modulated ones)",
+              double(differing), 0.);
 
   // The steady flow's cost: the second half of a run of the seven lanes.
   {

@@ -24,6 +24,11 @@ namespace anvil::KeywordFile
 
     /** "deck 'FILE', line N: " for messages. */
     std::string where() const;
+    /** Nothing but blanks and tabs (a card a keyword's list skips). */
+    bool blank() const
+    {
+      return text.find_first_not_of(" \t") == std::string::npos;
+    }
   };
 
   /** One keyword with its cards. */
