@@ -557,7 +557,6 @@ namespace anvil::MaterialModel
       V       log_a   = log_0_needed ? Simd::log(Simd::max(ratio_0, tiny)) : zero;
       counts.flow_stress_functions += log_0_needed;
       const V log_0   = log_a;
-      bool    anchored = true;
       for (unsigned int it = 0; it < 100 && any(running); ++it)
         {
           const V x     = eps0 + d;
@@ -566,22 +565,17 @@ namespace anvil::MaterialModel
           // Each lane takes the series or the functions by its own step
           // alone, so that its result does not depend on the other points
           // of its batch (np = 2 gives np = 1's bits).
-          V xn, log_ratio;
-          M small = running && !running;
           // 1 / x and 1 / d from one division.
           const V x_m = Simd::max(x, floor), d_m = Simd::max(d, floor), r_xd = one / (x_m * d_m);
           const V inv_x = d_m * r_xd, inv_d = x_m * r_xd;
           if (it == 0)
             inv_d_a = inv_d; // (d_a = d: u_d = 0 whatever it is)
-          if (anchored)
-            {
-              const V u_x = (d - dx_a) * inv_x_a;
-              const V u_d = (d - d_a) * inv_d_a;
-              small       = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
-                      (!fast || ((d_a > zero) && (Simd::abs(u_d) <= V(series_reach))));
-              xn          = xn_a * power_series(u_x, binomial);
-              log_ratio   = log_a + log1p_series(u_d);
-            }
+          const V u_x   = (d - dx_a) * inv_x_a;
+          const V u_d   = (d - d_a) * inv_d_a;
+          const M small = (x_a > zero) && (Simd::abs(u_x) <= V(series_reach)) && (fast == fast_a) &&
+                          (!fast || ((d_a > zero) && (Simd::abs(u_d) <= V(series_reach))));
+          V       xn        = xn_a * power_series(u_x, binomial);
+          V       log_ratio = log_a + log1p_series(u_d);
           if (!all(small || !running))
             {
               ++counts.flow_stress_functions;
@@ -603,7 +597,6 @@ namespace anvil::MaterialModel
               inv_d_a      = select(keep, inv_d_a, inv_d);
               log_a        = select(keep, log_a, log_f);
               fast_a       = (keep && fast_a) || (!keep && fast);
-              anchored     = true;
             }
           const M pos    = x > zero;
           const V H      = A + B * xn;
