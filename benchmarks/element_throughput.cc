@@ -350,9 +350,13 @@ int main(int argc, char **argv)
   if (argc > 3 && std::string(argv[3]) == "materials")
     {
       // Each round runs every case once; the fastest of the rounds is the
-      // figure least disturbed by other work on the machine.
+      // figure least disturbed by other work on the machine. Beside it, the
+      // median of the rounds' own ratios: each ratio compares cases run
+      // seconds apart, so that a slow spell of the host moves both terms.
+      constexpr unsigned int rounds = 5;
       double best[8] = {1e300, 1e300, 1e300, 1e300, 1e300, 1e300, 1e300, 1e300};
-      for (unsigned int k = 0; k < 5; ++k)
+      std::vector<double> ratios[8];
+      for (unsigned int k = 0; k < rounds; ++k)
         {
           const double t[8] = {run(n, cycles, Element::Integration::one_point).ns_per_element_cycle,
                                steel_elastic().ns_per_element_cycle,
@@ -363,7 +367,10 @@ int main(int argc, char **argv)
                                jc_yielding().ns_per_element_cycle,
                                jc_flowing().ns_per_element_cycle};
           for (unsigned int c = 0; c < 8; ++c)
-            best[c] = std::min(best[c], t[c]);
+            {
+              best[c] = std::min(best[c], t[c]);
+              ratios[c].push_back(t[c] / t[0]);
+            }
           std::printf("elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding %.2f, "
                       "concrete elastic range %.2f, concrete cracking %.2f, Johnson-Cook elastic range %.2f, "
                       "Johnson-Cook yielding %.2f, Johnson-Cook flowing %.2f\n",
@@ -375,6 +382,21 @@ int main(int argc, char **argv)
                   "%.2f, Johnson-Cook yielding %.2f, Johnson-Cook flowing %.2f\n",
                   best[0], best[1] / best[0], best[2] / best[0], best[3] / best[0], best[4] / best[0],
                   best[5] / best[0], best[6] / best[0], best[7] / best[0]);
+      double median[8], low[8], high[8];
+      for (unsigned int c = 0; c < 8; ++c)
+        {
+          std::sort(ratios[c].begin(), ratios[c].end());
+          median[c] = ratios[c][rounds / 2];
+          low[c]    = ratios[c].front();
+          high[c]   = ratios[c].back();
+        }
+      std::printf("median of the rounds' ratios (lowest-highest) / elastic: steel elastic range %.2f (%.2f-%.2f), "
+                  "steel yielding %.2f (%.2f-%.2f), concrete elastic range %.2f (%.2f-%.2f), concrete cracking "
+                  "%.2f (%.2f-%.2f), Johnson-Cook elastic range %.2f (%.2f-%.2f), Johnson-Cook yielding %.2f "
+                  "(%.2f-%.2f), Johnson-Cook flowing %.2f (%.2f-%.2f)\n",
+                  median[1], low[1], high[1], median[2], low[2], high[2], median[3], low[3], high[3], median[4],
+                  low[4], high[4], median[5], low[5], high[5], median[6], low[6], high[6], median[7], low[7],
+                  high[7]);
       return 0;
     }
   const Result one  = run(n, cycles, Element::Integration::one_point);
