@@ -353,50 +353,51 @@ int main(int argc, char **argv)
       // figure least disturbed by other work on the machine. Beside it, the
       // median of the rounds' own ratios: each ratio compares cases run
       // seconds apart, so that a slow spell of the host moves both terms.
-      constexpr unsigned int rounds = 5;
-      double best[8] = {1e300, 1e300, 1e300, 1e300, 1e300, 1e300, 1e300, 1e300};
-      std::vector<double> ratios[8];
+      constexpr unsigned int rounds = 5, n_cases = 8;
+      const char *const      name[n_cases] = {"elastic",
+                                              "steel elastic range",
+                                              "steel yielding",
+                                              "concrete elastic range",
+                                              "concrete cracking",
+                                              "Johnson-Cook elastic range",
+                                              "Johnson-Cook yielding",
+                                              "Johnson-Cook flowing"};
+      // One line: the elastic step's time, then each case over it.
+      const auto print = [&](const char *what, const double (&t)[n_cases]) {
+        std::printf("%selastic %.1f ns; / elastic:", what, t[0]);
+        for (unsigned int c = 1; c < n_cases; ++c)
+          std::printf("%s %s %.2f", c > 1 ? "," : "", name[c], t[c] / t[0]);
+        std::printf("\n");
+      };
+      double              best[n_cases];
+      std::vector<double> ratios[n_cases];
+      std::fill(std::begin(best), std::end(best), 1e300);
       for (unsigned int k = 0; k < rounds; ++k)
         {
-          const double t[8] = {run(n, cycles, Element::Integration::one_point).ns_per_element_cycle,
-                               steel_elastic().ns_per_element_cycle,
-                               steel_yielding(false).ns_per_element_cycle,
-                               concrete_elastic().ns_per_element_cycle,
-                               concrete_cracking().ns_per_element_cycle,
-                               jc_elastic().ns_per_element_cycle,
-                               jc_yielding().ns_per_element_cycle,
-                               jc_flowing().ns_per_element_cycle};
-          for (unsigned int c = 0; c < 8; ++c)
+          const double t[n_cases] = {run(n, cycles, Element::Integration::one_point).ns_per_element_cycle,
+                                     steel_elastic().ns_per_element_cycle,
+                                     steel_yielding(false).ns_per_element_cycle,
+                                     concrete_elastic().ns_per_element_cycle,
+                                     concrete_cracking().ns_per_element_cycle,
+                                     jc_elastic().ns_per_element_cycle,
+                                     jc_yielding().ns_per_element_cycle,
+                                     jc_flowing().ns_per_element_cycle};
+          for (unsigned int c = 0; c < n_cases; ++c)
             {
               best[c] = std::min(best[c], t[c]);
               ratios[c].push_back(t[c] / t[0]);
             }
-          std::printf("elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding %.2f, "
-                      "concrete elastic range %.2f, concrete cracking %.2f, Johnson-Cook elastic range %.2f, "
-                      "Johnson-Cook yielding %.2f, Johnson-Cook flowing %.2f\n",
-                      t[0], t[1] / t[0], t[2] / t[0], t[3] / t[0], t[4] / t[0], t[5] / t[0], t[6] / t[0],
-                      t[7] / t[0]);
+          print("", t);
         }
-      std::printf("fastest of 5: elastic %.1f ns; / elastic: steel elastic range %.2f, steel yielding "
-                  "%.2f, concrete elastic range %.2f, concrete cracking %.2f, Johnson-Cook elastic range "
-                  "%.2f, Johnson-Cook yielding %.2f, Johnson-Cook flowing %.2f\n",
-                  best[0], best[1] / best[0], best[2] / best[0], best[3] / best[0], best[4] / best[0],
-                  best[5] / best[0], best[6] / best[0], best[7] / best[0]);
-      double median[8], low[8], high[8];
-      for (unsigned int c = 0; c < 8; ++c)
+      print("fastest of 5: ", best);
+      std::printf("median of the rounds' ratios (lowest-highest) / elastic:");
+      for (unsigned int c = 1; c < n_cases; ++c)
         {
           std::sort(ratios[c].begin(), ratios[c].end());
-          median[c] = ratios[c][rounds / 2];
-          low[c]    = ratios[c].front();
-          high[c]   = ratios[c].back();
+          std::printf("%s %s %.2f (%.2f-%.2f)", c > 1 ? "," : "", name[c], ratios[c][rounds / 2],
+                      ratios[c].front(), ratios[c].back());
         }
-      std::printf("median of the rounds' ratios (lowest-highest) / elastic: steel elastic range %.2f (%.2f-%.2f), "
-                  "steel yielding %.2f (%.2f-%.2f), concrete elastic range %.2f (%.2f-%.2f), concrete cracking "
-                  "%.2f (%.2f-%.2f), Johnson-Cook elastic range %.2f (%.2f-%.2f), Johnson-Cook yielding %.2f "
-                  "(%.2f-%.2f), Johnson-Cook flowing %.2f (%.2f-%.2f)\n",
-                  median[1], low[1], high[1], median[2], low[2], high[2], median[3], low[3], high[3], median[4],
-                  low[4], high[4], median[5], low[5], high[5], median[6], low[6], high[6], median[7], low[7],
-                  high[7]);
+      std::printf("\n");
       return 0;
     }
   const Result one  = run(n, cycles, Element::Integration::one_point);

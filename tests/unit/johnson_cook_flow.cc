@@ -104,23 +104,38 @@ namespace
     unsigned long plastic_steps = 0;
   };
 
+  /** W points' histories as the model initialises them, and the batch's
+      view of them (which points into them: not to be copied). */
+  struct Points
+  {
+    std::vector<std::vector<double>> history;
+    M::BatchHistory                  batch;
+
+    explicit Points(const M &model)
+      : history(W, std::vector<double>(model.n_history(Formulation::updated_lagrangian), 0.))
+    {
+      for (auto &h : history)
+        model.initialize_history(h.data(), MaterialModel::PointData());
+      batch.n_hot      = model.n_hot_history(Formulation::updated_lagrangian);
+      batch.n_cold     = history[0].size() - batch.n_hot;
+      batch.hot_stride = 1;
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          batch.hot[l]  = history[l].data();
+          batch.cold[l] = history[l].data() + batch.n_hot;
+        }
+    }
+    Points(const Points &) = delete;
+    Points &operator=(const Points &) = delete;
+  };
+
   /** The lanes of @p lanes (-1: at rest) through the batched update. */
   Run run_batch(const M &model, const std::array<int, W> &lanes)
   {
-    const unsigned int               n_h = model.n_history(Formulation::updated_lagrangian);
-    std::vector<std::vector<double>> history(W, std::vector<double>(n_h, 0.));
-    for (auto &h : history)
-      model.initialize_history(h.data(), MaterialModel::PointData());
-    M::BatchHistory batch;
-    batch.n_hot      = model.n_hot_history(Formulation::updated_lagrangian);
-    batch.n_cold     = n_h - batch.n_hot;
-    batch.hot_stride = 1;
-    for (unsigned int l = 0; l < W; ++l)
-      {
-        batch.hot[l]  = history[l].data();
-        batch.cold[l] = history[l].data() + batch.n_hot;
-      }
-    const auto &law = model.get_law();
+    Points      points(model);
+    auto       &history = points.history;
+    const auto &batch   = points.batch;
+    const auto &law     = model.get_law();
     Run         r;
     r.out.resize(W);
     double D[6][W], spin[3][W] = {}, s[6][W] = {};
@@ -275,45 +290,29 @@ int main()
 
   // The steady flow's cost: the second half of a run of the seven lanes.
   {
-    // (The counts of the whole run, and of its first half alone.)
-    struct Half
-    {
-      unsigned long packs, functions, thermal;
-    };
-    const auto counts = [&](const unsigned int steps) {
-      M m;
-      m.set(7830., 2.06e11, 0.3, law, 20., false);
-      std::vector<std::vector<double>> history(W, std::vector<double>(m.n_history(Formulation::updated_lagrangian)));
-      for (auto &h : history)
-        m.initialize_history(h.data(), MaterialModel::PointData());
-      M::BatchHistory batch;
-      batch.n_hot      = m.n_hot_history(Formulation::updated_lagrangian);
-      batch.n_cold     = m.n_history(Formulation::updated_lagrangian) - batch.n_hot;
-      batch.hot_stride = 1;
-      for (unsigned int l = 0; l < W; ++l)
-        {
-          batch.hot[l]  = history[l].data();
-          batch.cold[l] = history[l].data() + batch.n_hot;
-        }
-      double D[6][W], spin[3][W] = {}, s[6][W] = {};
-      for (unsigned int i = 0; i < steps; ++i)
-        {
-          for (unsigned int l = 0; l < W; ++l)
-            {
-              // (Lane 3 not reversed: steady flow throughout.)
-              const auto d = rate_of(lanes[l], std::min(i, n_steps / 2 - 1));
-              for (unsigned int k = 0; k < 6; ++k)
-                D[k][l] = d[k];
-            }
-          m.update_cauchy_stress_batch(D, spin, dt, s, batch);
-        }
-      const auto &c = m.return_counts();
-      return Half{c.packs, c.flow_stress_functions, c.thermal_functions};
-    };
-    const Half   all = counts(n_steps), first = counts(n_steps / 2);
+    // (The counts at half time and at the end of one run.)
+    M m;
+    m.set(7830., 2.06e11, 0.3, law, 20., false);
+    Points         points(m);
+    M::ReturnCounts first;
+    double          D[6][W], spin[3][W] = {}, s[6][W] = {};
+    for (unsigned int i = 0; i < n_steps; ++i)
+      {
+        if (i == n_steps / 2)
+          first = m.return_counts();
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            // (Lane 3 not reversed: steady flow throughout.)
+            const auto d = rate_of(lanes[l], std::min(i, n_steps / 2 - 1));
+            for (unsigned int k = 0; k < 6; ++k)
+              D[k][l] = d[k];
+          }
+        m.update_cauchy_stress_batch(D, spin, dt, s, points.batch);
+      }
+    const M::ReturnCounts &all = m.return_counts();
     const double packs     = double(all.packs - first.packs);
-    const double functions = (all.functions - first.functions) / packs;
-    const double thermal   = (all.thermal - first.thermal) / packs;
+    const double functions = (all.flow_stress_functions - first.flow_stress_functions) / packs;
+    const double thermal   = (all.thermal_functions - first.thermal_functions) / packs;
     std::printf("== steady flow, steps 1,500-3,000: %.0f returning packs, %.2f evaluations of the flow "
                 "stress's functions and %.2f of the thermal factor's each\n",
                 packs, functions, thermal);
