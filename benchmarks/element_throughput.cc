@@ -20,7 +20,9 @@
  * the ratios of the fastest runs; CASE: one of elastic, steel-elastic,
  * steel-yielding, steel-yielding-rate (Cowper-Symonds), concrete-elastic,
  * concrete-cracking, jc-elastic, jc-yielding, jc-flowing (steady flow),
- * jc-yielding-total (Rate form = total, LS-DYNA's VP = 0), elastic-bulk
+ * jc-yielding-total, jc-flowing-total (Rate form = total, LS-DYNA's VP =
+ * 0), jc-yielding-total-1, jc-flowing-total-1 (the same with 'Return
+ * iterations = 1'), elastic-bulk
  * (with bulk viscosity), full, full-bulk (full integration, elastic)
  * alone, for profiling)
  */
@@ -65,7 +67,8 @@ namespace
              const bool                     total_rate   = false,
              const bool                     bulk_viscosity = false,
              const unsigned int             warm_up = 3,
-             const bool                     driven  = false)
+             const bool                     driven  = false,
+             const unsigned int             jc_iterations = 0)
   {
     // Elastic, or the seed's Table 1 steel with a yield stress low enough
     // that the block flows plastically from the first cycles.
@@ -97,6 +100,7 @@ namespace
     jc.m = 1.1, jc.melting_temperature = 1540., jc.transition_temperature = 20.;
     jc.specific_heat = 460., jc.heat_fraction = 0.9;
     jc.total_rate = total_rate; // LS-DYNA's VP = 0 (keyword decks' default)
+    jc.max_iterations = jc_iterations; // 0: the return to its tolerance
     jc_model.set(7830., 2.06e11, 0.3, jc, 20., false);
     const MaterialModel::Interface &material =
       johnson_cook ? static_cast<const MaterialModel::Interface &>(jc_model) :
@@ -304,14 +308,17 @@ int main(int argc, char **argv)
   // 1/s) for 100 loading cycles before the timed ones, so that the points
   // flow at plastic strains of 1e-4 to 1e-2, each step's increment a few
   // per cent of the strain or less, as behind a Taylor bar's foot.
-  const auto jc_flowing = [&]() {
+  // (total: 'Rate form = total'; iterations: 'Return iterations', the
+  // return's cap, which needs it; 0: none.)
+  const auto jc_flowing = [&](const bool total = false, const unsigned int iterations = 0) {
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-               Formulation::updated_lagrangian, false, false, false, 10., false, 8.06e8, true, false, false, 100,
-               true);
+               Formulation::updated_lagrangian, false, false, false, 10., false, 8.06e8, true, total, false, 100,
+               true, iterations);
   };
-  const auto jc_yielding_total = [&]() {
+  const auto jc_yielding_total = [&](const unsigned int iterations = 0) {
     return run(n, cycles, Element::Integration::one_point, Element::HourglassType::viscous,
-               Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, true, true);
+               Formulation::updated_lagrangian, false, false, false, 1., false, 1e5, true, true, false, 3, false,
+               iterations);
   };
   // One case alone, for profiling (perf record) the material updates.
   if (argc > 3 && std::string(argv[3]) != "materials")
@@ -325,7 +332,10 @@ int main(int argc, char **argv)
                                name == "jc-elastic"        ? jc_elastic() :
                                name == "jc-yielding"       ? jc_yielding() :
                                name == "jc-flowing"        ? jc_flowing() :
+                               name == "jc-flowing-total"  ? jc_flowing(true) :
+                               name == "jc-flowing-total-1" ? jc_flowing(true, 1) :
                                name == "jc-yielding-total" ? jc_yielding_total() :
+                               name == "jc-yielding-total-1" ? jc_yielding_total(1) :
                                name == "elastic" ? run(n, cycles, Element::Integration::one_point) :
                                name == "elastic-bulk" ? with_bulk() :
                                name == "full" ? run(n, cycles, Element::Integration::full) :
@@ -339,8 +349,8 @@ int main(int argc, char **argv)
           std::fprintf(stderr,
                        "element_throughput: unknown case '%s' (allowed: one-point, materials, "
                        "elastic, steel-elastic, steel-yielding, steel-yielding-rate, concrete-elastic, "
-                       "concrete-cracking, jc-elastic, jc-yielding, jc-flowing, jc-yielding-total, elastic-bulk, full, "
-                       "full-bulk)\n",
+                       "concrete-cracking, jc-elastic, jc-yielding, jc-flowing, jc-yielding-total, "
+                       "jc-yielding-total-1, jc-flowing-total, jc-flowing-total-1, elastic-bulk, full, full-bulk)\n",
                        name.c_str());
           return 1;
         }
@@ -353,7 +363,7 @@ int main(int argc, char **argv)
       // figure least disturbed by other work on the machine. Beside it, the
       // median of the rounds' own ratios: each ratio compares cases run
       // seconds apart, so that a slow spell of the host moves both terms.
-      constexpr unsigned int rounds = 5, n_cases = 8;
+      constexpr unsigned int rounds = 5, n_cases = 12;
       const char *const      name[n_cases] = {"elastic",
                                               "steel elastic range",
                                               "steel yielding",
@@ -361,7 +371,11 @@ int main(int argc, char **argv)
                                               "concrete cracking",
                                               "Johnson-Cook elastic range",
                                               "Johnson-Cook yielding",
-                                              "Johnson-Cook flowing"};
+                                              "Johnson-Cook flowing",
+                                              "Johnson-Cook yielding, total rate",
+                                              "Johnson-Cook yielding, total rate, one step",
+                                              "Johnson-Cook flowing, total rate",
+                                              "Johnson-Cook flowing, total rate, one step"};
       // One line: the elastic step's time, then each case over it.
       const auto print = [&](const char *what, const double (&t)[n_cases]) {
         std::printf("%selastic %.1f ns; / elastic:", what, t[0]);
@@ -381,7 +395,11 @@ int main(int argc, char **argv)
                                      concrete_cracking().ns_per_element_cycle,
                                      jc_elastic().ns_per_element_cycle,
                                      jc_yielding().ns_per_element_cycle,
-                                     jc_flowing().ns_per_element_cycle};
+                                     jc_flowing().ns_per_element_cycle,
+                                     jc_yielding_total().ns_per_element_cycle,
+                                     jc_yielding_total(1).ns_per_element_cycle,
+                                     jc_flowing(true).ns_per_element_cycle,
+                                     jc_flowing(true, 1).ns_per_element_cycle};
           for (unsigned int c = 0; c < n_cases; ++c)
             {
               best[c] = std::min(best[c], t[c]);

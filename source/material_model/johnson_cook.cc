@@ -86,8 +86,9 @@ namespace anvil::MaterialModel
     // |g'' / 2 g'| step^2: the iteration stops when that is below the
     // tolerance (and the step does not cross the rate term's kink), so
     // that the last evaluation is not spent confirming a converged step.
-    double lo = 0., hi = scale;
-    for (unsigned int it = 0; it < 100; ++it)
+    double             lo = 0., hi = scale;
+    const unsigned int steps = max_iterations > 0 ? max_iterations : 100;
+    for (unsigned int it = 0; it < steps; ++it)
       {
         const double x     = eps_p + d;
         const double xn    = x > 0 ? std::pow(x, n) : 0.;
@@ -157,6 +158,13 @@ namespace anvil::MaterialModel
                       "strain rate, solved with the return (ABAQUS; LS-DYNA's VP = 1); 'total', the effective "
                       "total strain rate of the step, sqrt(2/3 D':D'), which scales the yield stress before the "
                       "return (LS-DYNA's default VP = 0). Units: none.");
+    prm.declare_entry("Return iterations", "0", Patterns::Integer(0, 100),
+                      "Newton steps the radial return may take: 0, until the plastic increment is found to "
+                      "1e-12 of its bound q_trial / 3G (the default); N > 0, at most N, as the explicit codes' "
+                      "returns with a fixed number of iterations (1: the return linearised about its first "
+                      "guess), with 'Rate form = total' only. A capped return leaves the stress off the yield "
+                      "surface by what its last step left, and the next step takes it back; doc/theory.md "
+                      "measures the error and doc/performance.md the time. Units: none.");
     prm.declare_entry("m", "1", Patterns::Double(0.), "Thermal softening exponent m of 1 - T*^m. Units: none.");
     prm.declare_entry("Melting temperature", "0", Patterns::Double(),
                       "T_m; at or below 'Transition temperature' (the default 0): no thermal softening. "
@@ -203,6 +211,7 @@ namespace anvil::MaterialModel
     l.C                    = prm.get_double("C");
     l.reference_rate       = positive("Reference strain rate");
     l.total_rate           = prm.get("Rate form") == "total";
+    l.max_iterations       = prm.get_integer("Return iterations");
     l.m                    = prm.get_double("m");
     l.melting_temperature  = prm.get_double("Melting temperature");
     l.transition_temperature = prm.get_double("Transition temperature");
@@ -211,6 +220,11 @@ namespace anvil::MaterialModel
     l.heat_fraction        = prm.get_double("Inelastic heat fraction");
     for (unsigned int i = 0; i < 5; ++i)
       l.D[i] = prm.get_double("D" + std::to_string(i + 1));
+    if (l.max_iterations > 0 && !l.total_rate)
+      throw InputError(where + "entry 'Return iterations' = " + prm.get("Return iterations") +
+                       " needs 'Rate form = total' (0 allowed with 'plastic'): with the plastic strain rate "
+                       "the rate term is solved with the return, and a fixed number of Newton steps leaves it "
+                       "far from its root (doc/theory.md)");
     const bool erode = prm.get_bool("Erosion");
     if (erode && !l.damage())
       throw InputError(where + "'Erosion = true' needs the damage constants (D1 or D2 not 0)");
@@ -408,7 +422,10 @@ namespace anvil::MaterialModel
   // depends on its own values only.
   namespace
   {
-    template <unsigned int R>
+    // (one_step: 'Return iterations = 1', the iteration's bound a constant,
+    // so that the compiler drops the stopping rule's work and the
+    // re-anchoring a single step does not need.)
+    template <unsigned int R, bool one_step>
     void plastic_return(const JohnsonCookLaw &law,
                         const double          mu,
                         const double          dt,
@@ -557,7 +574,8 @@ namespace anvil::MaterialModel
       V       log_a   = log_0_needed ? Simd::log(Simd::max(ratio_0, tiny)) : zero;
       counts.flow_stress_functions += log_0_needed;
       const V log_0   = log_a;
-      for (unsigned int it = 0; it < 100 && any(running); ++it)
+      const unsigned int steps = one_step ? 1 : law.max_iterations > 0 ? law.max_iterations : 100;
+      for (unsigned int it = 0; it < steps && any(running); ++it)
         {
           const V x     = eps0 + d;
           const V ratio = d * inv_rate;
@@ -700,7 +718,11 @@ namespace anvil::MaterialModel
       history.load(k, h[k]);
     for (unsigned int l = 0; l < W; ++l)
       active[l] = flag[l] != 0 ? 1. : 0.;
-    plastic_return<W / Simd::register_lanes>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0], counts);
+    constexpr unsigned int R = W / Simd::register_lanes;
+    if (law.max_iterations == 1)
+      plastic_return<R, true>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0], counts);
+    else
+      plastic_return<R, false>(law, mu, dt, active, previous_rate, total_rate, &s[0][0], &h[0][0], counts);
     for (unsigned int k = 0; k < n_return_history; ++k)
       history.store(k, h[k]);
   }

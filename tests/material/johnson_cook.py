@@ -28,7 +28,11 @@ here in SI units.
 - One hexahedron in uniaxial stress at 100 1/s, adiabatic, through the
   solver (one point, updated Lagrangian; full integration, total
   Lagrangian): stress and temperature of the driver within 1 %.
-- Bad input: 'Erosion = true' without damage constants: one line, exit 2.
+- The same total form with 'Return iterations = 1' (one Newton step from
+  the step before's increment): on the closed form to 1e-6 past 0.1 %
+  plastic strain.
+- Bad input: 'Erosion = true' without damage constants, and 'Return
+  iterations = 1' with the plastic rate's form: one line, exit 2.
 """
 import math
 import os
@@ -100,8 +104,10 @@ for rate in (1e-3, 1.0, 100.0, 1e4):
 # yield, to round-off: the return's consistency with the known factor.
 # The plastic form's rate approaches the same as the flow settles.
 rate = 100.0
-for form in ("total", "plastic"):
-    d = run_material_point(c, args, f"uniaxial_strain_{form}", material(heat=0, damage=f"    set Rate form = {form}\n"),
+for form in ("total", "plastic", "total, one step"):
+    extra = f"    set Rate form = {form.split(',')[0]}\n" + ("    set Return iterations = 1\n" if "one" in form else "")
+    d = run_material_point(c, args, f"uniaxial_strain_{form.replace(', ', '_').replace(' ', '_')}",
+                           material(heat=0, damage=extra),
                            Mode="uniaxial strain", Strain_rate=rate, Strain_path=0.1, Strain_increment=1e-4)
     R = rate_factor(2 * rate / 3)
     dev = [abs((sx - sy) / (hardening(ep) * R) - 1)
@@ -110,9 +116,18 @@ for form in ("total", "plastic"):
     if form == "total":
         c.check_below("Rate form = total, uniaxial strain at 100 1/s: largest |q / (A + B eps_p^n) R(2/3 rate) - 1| "
                       "past yield", max(dev), 1e-9)
-    else:
+    elif form == "plastic":
         c.check_below("Rate form = plastic, the same path: |q / closed form of the total rate - 1| past 2 % plastic "
                       "strain (the plastic rate settles on 2/3 rate)", max(late), 2e-3)
+    else:
+        # One Newton step from the step before's increment: the stress
+        # leaves the curve by that step's second-order remainder, largest
+        # where the point first yields, and the next step takes it back.
+        first = [x for x, ep in zip(dev, [e for e in d["effective_plastic_strain"] if e > 1e-6]) if ep > 1e-3]
+        print(f"  Return iterations = 1: largest deviation past yield {max(dev):.2e}, past 0.1 % plastic strain "
+              f"{max(first):.2e}, past 2 % {max(late):.2e}")
+        c.check_below("Rate form = total, 'Return iterations = 1': largest |q / closed form - 1| past 0.1 % plastic "
+                      "strain", max(first), 1e-6)
 
 # Adiabatic heating.
 k = chi / (rho * cp * (Tm - Tt))
@@ -175,14 +190,17 @@ for label, formulation, integration in (("one point, updated Lagrangian", "updat
     c.check_below(f"{label}: largest |sigma_xx - driver| / peak stress", worst, 0.01)
     c.check(f"{label}: final strain reached", final, target, 0.002, relative=True)
 
-# Bad input.
+# Bad input: one line naming the entry, exit 2.
 prm = os.path.join(args.work_dir, "bad.prm")
-with open(prm, "w") as fh:
-    fh.write("set Output file = bad.csv\n" + material(damage="    set Erosion = true\n") +
-             "subsection Loading\n  set Mode = uniaxial stress\nend\n")
-r = subprocess.run([args.anvil, "--material-point", prm], cwd=args.work_dir, capture_output=True, text=True)
-lines = [l for l in r.stderr.strip().splitlines() if l.strip()]
-print(f"  bad input: exit {r.returncode}: {r.stderr.strip()}")
-c.check_true("'Erosion = true' without damage constants: exit 2 with one line naming the entry",
-             r.returncode == 2 and len(lines) == 1 and "Erosion" in lines[0])
+for label, setting, entry in (("'Erosion = true' without damage constants", "Erosion = true", "Erosion"),
+                              ("'Return iterations = 1' with 'Rate form = plastic'", "Return iterations = 1",
+                               "Return iterations")):
+    with open(prm, "w") as fh:
+        fh.write("set Output file = bad.csv\n" + material(damage=f"    set {setting}\n") +
+                 "subsection Loading\n  set Mode = uniaxial stress\nend\n")
+    r = subprocess.run([args.anvil, "--material-point", prm], cwd=args.work_dir, capture_output=True, text=True)
+    lines = [l for l in r.stderr.strip().splitlines() if l.strip()]
+    print(f"  bad input: exit {r.returncode}: {r.stderr.strip()}")
+    c.check_true(f"{label}: exit 2 with one line naming the entry",
+                 r.returncode == 2 and len(lines) == 1 and entry in lines[0])
 c.finish()

@@ -25,7 +25,13 @@
  *   2 gives np = 1's results), for the seven paths and for 21 paths whose
  *   rates are modulated step by step;
  * - that the series carry the steady flow: evaluations of the functions per
- *   returning pack over the last 1,500 steps.
+ *   returning pack over the last 1,500 steps;
+ * - the capped return ('Return iterations' 1-3) with the total strain
+ *   rate's form: batched against point by point, and against the converged
+ *   return (final plastic strain; stress from step 100 on, past the first
+ *   yield's transient). The same caps with the plastic rate's form are
+ *   printed: they stay far from the converged return, which is why the
+ *   parameters refuse them.
  */
 #include <anvil/material_model/johnson_cook.h>
 
@@ -34,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 using namespace anvil;
@@ -321,5 +328,56 @@ int main()
                 functions, 1.05);
     check_below("steady flow: evaluations of the thermal factor's functions per pack", thermal, 0.05);
   }
+
+  // The capped return ('Return iterations' N > 0): the batched return
+  // against the point-by-point one with the same cap, and each capped run
+  // against the converged one (final plastic strain, and the stress over
+  // the whole path, of the lane's largest), for both rate forms.
+  for (const bool total : {false, true})
+    {
+      MaterialModel::JohnsonCookLaw exact_law = law;
+      exact_law.total_rate                    = total;
+      M exact;
+      exact.set(7830., 2.06e11, 0.3, exact_law, 20., false);
+      const Run reference = run_batch(exact, lanes);
+      for (const unsigned int cap : {1u, 2u, 3u})
+        {
+          MaterialModel::JohnsonCookLaw capped_law = exact_law;
+          capped_law.max_iterations                = cap;
+          M capped;
+          capped.set(7830., 2.06e11, 0.3, capped_law, 20., false);
+          const Run r           = run_batch(capped, lanes);
+          double    worst_point = 0, worst_eps_end = 0, worst_s = 0, worst_s100 = 0;
+          for (unsigned int l = 0; l + 1 < W; ++l)
+            {
+              const auto point = run_point(capped, lanes[l]);
+              double     s_max = 0;
+              for (unsigned int i = 0; i < n_steps; ++i)
+                for (unsigned int k = 0; k < 6; ++k)
+                  s_max = std::max(s_max, std::abs(reference.out[l][i * stride + k]));
+              for (unsigned int i = 0; i < n_steps; ++i)
+                for (unsigned int k = 0; k < 6; ++k)
+                  {
+                    worst_point = std::max(worst_point, std::abs(r.out[l][i * stride + k] - point[i * stride + k]) / s_max);
+                    const double e = std::abs(r.out[l][i * stride + k] - reference.out[l][i * stride + k]) / s_max;
+                    worst_s = std::max(worst_s, e);
+                    if (i >= 100) worst_s100 = std::max(worst_s100, e);
+                  }
+              const double e_ref = reference.out[l][(n_steps - 1) * stride + 6];
+              worst_eps_end = std::max(worst_eps_end, std::abs(r.out[l][(n_steps - 1) * stride + 6] - e_ref) / e_ref);
+            }
+          std::printf("== rate form %s, at most %u Newton step(s): batched against point by point %.1e; against "
+                      "the converged return: final plastic strain %.2e, stress %.2e, from step 100 on %.2e (of the "
+                      "lane's largest)\n",
+                      total ? "total" : "plastic", cap, worst_point, worst_eps_end, worst_s, worst_s100);
+          if (!total)
+            continue; // (refused by the parameters: printed as the reason)
+          const std::string what = "total rate, at most " + std::to_string(cap) + " Newton step(s): ";
+          check_below(what + "batched against point by point: stress / the lane's largest", worst_point, 1e-12);
+          check_below(what + "final plastic strain against the converged return (relative)", worst_eps_end, 1e-6);
+          check_below(what + "stress against the converged return from step 100 on / the lane's largest", worst_s100,
+                      1e-4);
+        }
+    }
   return test::finish();
 }

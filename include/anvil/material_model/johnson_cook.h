@@ -47,6 +47,16 @@ namespace anvil::MaterialModel
         step, sqrt(2/3 D':D'), which scales the yield stress before the
         return (LS-DYNA's default VP = 0). */
     bool total_rate = false;
+    /** Newton steps the return may take: 0, as many as it needs to meet
+        return_tolerance (the default); N > 0, at most N, as the explicit
+        codes' returns with a fixed number of iterations (1: the return
+        linearised about its first guess). A capped return leaves the
+        stress off the yield surface by what its last step left; the next
+        step's return starts from the stored state and takes it back, so
+        the error does not accumulate. Only with total_rate: with the
+        plastic rate's term in the iteration, capped returns stay far
+        from the root (doc/theory.md measures both). */
+    unsigned int max_iterations = 0;
 
     /** Whether the flow stress softens with temperature. */
     bool thermal_softening() const
@@ -100,7 +110,7 @@ namespace anvil::MaterialModel
      * by Newton's method inside the bracket [0, q_trial / 3G] (bisection
      * where a step leaves it), from @p guess where it lies in the bracket.
      * 0 when the point is within the yield stress at the reference rate
-     * (elastic).
+     * (elastic). At most max_iterations steps where that is not 0.
      */
     double plastic_increment(double q_trial, double eps_p, double thermal, double dt, double three_G,
                              double guess = 0) const;
