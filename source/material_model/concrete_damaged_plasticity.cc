@@ -739,7 +739,7 @@ namespace anvil::MaterialModel
     constexpr unsigned int W   = batch_size;
     const double           K   = bulk_modulus();
     const double           a2  = eccentric_term * eccentric_term;
-    const double           tol = 1e-10 * par.curves.compressive_strength;
+    const double           tol = return_tolerance * par.curves.compressive_strength;
     // (The model's constants as locals: a member read under a condition
     // would be a masked load, which keeps a loop from vectorising.)
     const double mu = this->mu, alpha = this->alpha, gamma = this->gamma, tan_psi = this->tan_psi;

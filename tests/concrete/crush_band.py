@@ -11,7 +11,8 @@ unregularised point (h = l_c) carries at e_p + (e - e_p) / 4; checked over
 the whole softening path (largest difference over the peak stress, 0.5 %),
 and the work of the stress on its inelastic strain beyond the peak against
 the unregularised point's up to the mapped strain, times l_c / h (the
-energy per unit area of a band: 1 %). Without the entry the curve is the unregularised one (1e-9).
+energy per unit area of a band: 1 %). Without the entry the curve is the unregularised one (to
+twice the return's tolerance, 1e-6 of f'c).
 
 Through the solver: the bar of tests/concrete/pulled_bar.prm (100 x 10 x 10
 mm, one row weakened to 0.95 so that crushing localises there) pushed at
@@ -46,7 +47,10 @@ e_plain = [-x for x in plain["strain_xx"]]
 E = s_plain[5] / e_plain[5]
 peak = max(s_plain)
 worst_same = max(abs(a - b) for a, b in zip(plain["stress_xx"], same["stress_xx"])) / peak
-c.check_below("l_c = h against no crush band: largest stress difference / peak", worst_same, 1e-9)
+# (The same curve by two routes of arithmetic: the returns may stop at
+# different iterates, each within the return's tolerance, 1e-6 of f'c, of
+# the surface.)
+c.check_below("l_c = h against no crush band: largest stress difference / peak", worst_same, 2e-6)
 
 
 def inelastic(stress, strain):

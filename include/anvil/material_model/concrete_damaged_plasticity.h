@@ -401,6 +401,13 @@ namespace anvil::MaterialModel
       return gamma;
     }
 
+    /** The return to Lubliner's surface stops at |F| <= return_tolerance
+        f'c (F in stress units): the stress it leaves lies that share of
+        the strength off the surface, its plastic strain about
+        return_tolerance f'c / E (1.5e-9 for the seed's concrete) from the
+        exact one (doc/theory.md, "Return mapping"). */
+    static constexpr double return_tolerance = 1e-6;
+
     /** How hard the return to Lubliner's surface works: the returns made
         so far and the evaluations of F they took (benchmarks print the
         ratio). */
