@@ -86,9 +86,8 @@ namespace anvil::MaterialModel
     // |g'' / 2 g'| step^2: the iteration stops when that is below the
     // tolerance (and the step does not cross the rate term's kink), so
     // that the last evaluation is not spent confirming a converged step.
-    double             lo = 0., hi = scale;
-    const unsigned int steps = max_iterations > 0 ? max_iterations : 100;
-    for (unsigned int it = 0; it < steps; ++it)
+    double lo = 0., hi = scale;
+    for (unsigned int it = 0; it < newton_steps(); ++it)
       {
         const double x     = eps_p + d;
         const double xn    = x > 0 ? std::pow(x, n) : 0.;
@@ -574,7 +573,7 @@ namespace anvil::MaterialModel
       V       log_a   = log_0_needed ? Simd::log(Simd::max(ratio_0, tiny)) : zero;
       counts.flow_stress_functions += log_0_needed;
       const V log_0   = log_a;
-      const unsigned int steps = one_step ? 1 : law.max_iterations > 0 ? law.max_iterations : 100;
+      const unsigned int steps = one_step ? 1 : law.newton_steps();
       for (unsigned int it = 0; it < steps && any(running); ++it)
         {
           const V x     = eps0 + d;

@@ -17,9 +17,9 @@
  * - the Newton iteration on dlambda converges as Newton does: at most 3
  *   evaluations of F per return over all paths, 400 steps each (1.58
  *   measured; 2.0 with the stop at 1e-10 f'c; with the stress part of
- *   dF/ddlambda scaled by 0.7 on
- *   purpose, 7.22 (13.7 at 1e-10 f'c): a wrong derivative makes the iteration linear, or
- *   leaves it to the bracket's secant and bisection);
+ *   dF/ddlambda scaled by 0.7 on purpose, 7.22, and 13.7 at 1e-10 f'c: a
+ *   wrong derivative makes the iteration linear, or leaves it to the
+ *   bracket's secant and bisection);
  * - the batched update returns the points of a batch together, lane by
  *   lane: a point's stress and history do not depend on its lane or on the
  *   points beside it. The four paths run in one batch twice (lanes 0-3 and,

@@ -136,6 +136,13 @@ namespace
     Points &operator=(const Points &) = delete;
   };
 
+  /** @p model with the DynELA deck's elasticity and initial temperature
+      and the Johnson-Cook law @p law. */
+  void set_deck_steel(M &model, const MaterialModel::JohnsonCookLaw &law)
+  {
+    model.set(7830., 2.06e11, 0.3, law, 20., false);
+  }
+
   /** The lanes of @p lanes (-1: at rest) through the batched update. */
   Run run_batch(const M &model, const std::array<int, W> &lanes)
   {
@@ -222,7 +229,7 @@ int main()
   law.m = 1.1, law.melting_temperature = 1540., law.transition_temperature = 20.;
   law.specific_heat = 460., law.heat_fraction = 0.9;
   M model;
-  model.set(7830., 2.06e11, 0.3, law, 20., false);
+  set_deck_steel(model, law);
 
   const std::array<int, W> lanes = {{0, 1, 2, 3, 4, 5, 6, -1}};
   const Run                together = run_batch(model, lanes);
@@ -299,7 +306,7 @@ int main()
   {
     // (The counts at half time and at the end of one run.)
     M m;
-    m.set(7830., 2.06e11, 0.3, law, 20., false);
+    set_deck_steel(m, law);
     Points         points(m);
     M::ReturnCounts first;
     double          D[6][W], spin[3][W] = {}, s[6][W] = {};
@@ -338,14 +345,14 @@ int main()
       MaterialModel::JohnsonCookLaw exact_law = law;
       exact_law.total_rate                    = total;
       M exact;
-      exact.set(7830., 2.06e11, 0.3, exact_law, 20., false);
+      set_deck_steel(exact, exact_law);
       const Run reference = run_batch(exact, lanes);
       for (const unsigned int cap : {1u, 2u, 3u})
         {
           MaterialModel::JohnsonCookLaw capped_law = exact_law;
           capped_law.max_iterations                = cap;
           M capped;
-          capped.set(7830., 2.06e11, 0.3, capped_law, 20., false);
+          set_deck_steel(capped, capped_law);
           const Run r           = run_batch(capped, lanes);
           double    worst_point = 0, worst_eps_end = 0, worst_s = 0, worst_s100 = 0;
           for (unsigned int l = 0; l + 1 < W; ++l)
@@ -358,13 +365,16 @@ int main()
               for (unsigned int i = 0; i < n_steps; ++i)
                 for (unsigned int k = 0; k < 6; ++k)
                   {
-                    worst_point = std::max(worst_point, std::abs(r.out[l][i * stride + k] - point[i * stride + k]) / s_max);
-                    const double e = std::abs(r.out[l][i * stride + k] - reference.out[l][i * stride + k]) / s_max;
-                    worst_s = std::max(worst_s, e);
-                    if (i >= 100) worst_s100 = std::max(worst_s100, e);
+                    const double v = r.out[l][i * stride + k];
+                    const double e = std::abs(v - reference.out[l][i * stride + k]) / s_max;
+                    worst_point    = std::max(worst_point, std::abs(v - point[i * stride + k]) / s_max);
+                    worst_s        = std::max(worst_s, e);
+                    if (i >= 100)
+                      worst_s100 = std::max(worst_s100, e);
                   }
-              const double e_ref = reference.out[l][(n_steps - 1) * stride + 6];
-              worst_eps_end = std::max(worst_eps_end, std::abs(r.out[l][(n_steps - 1) * stride + 6] - e_ref) / e_ref);
+              const unsigned int end   = (n_steps - 1) * stride + 6; // the final plastic strain
+              const double       e_ref = reference.out[l][end];
+              worst_eps_end = std::max(worst_eps_end, std::abs(r.out[l][end] - e_ref) / e_ref);
             }
           std::printf("== rate form %s, at most %u Newton step(s): batched against point by point %.1e; against "
                       "the converged return: final plastic strain %.2e, stress %.2e, from step 100 on %.2e (of the "

@@ -58,6 +58,14 @@ namespace anvil::MaterialModel
         from the root (doc/theory.md measures both). */
     unsigned int max_iterations = 0;
 
+    /** The bound of the return's Newton loop: max_iterations, or 100
+        where it is 0 (the converged return stops on its tolerance long
+        before). */
+    unsigned int newton_steps() const
+    {
+      return max_iterations > 0 ? max_iterations : 100;
+    }
+
     /** Whether the flow stress softens with temperature. */
     bool thermal_softening() const
     {
